@@ -1,0 +1,247 @@
+"""The Python face of the engine: build, stabilise, run, change and continue."""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import replace
+from typing import Any, Optional, Union
+
+import numpy as np
+
+from . import _beltrs
+from .result import Result
+from .scene import Drive, Friction, Scene
+
+__all__ = ["Simulation"]
+
+
+class Simulation:
+    """A compiled scene and its state.
+
+    >>> sim = Simulation(beltrs.scenes.hustrulid_loop())
+    >>> sim.stabilise()
+    >>> res = sim.run(1.0, record_interval=0.01)
+
+    Raises :class:`beltrs.SceneError` (naming field, value and rule) for invalid scenes and
+    :class:`beltrs.TimeStepError` for a time step above the stability limit.
+    """
+
+    def __init__(self, scene: Scene) -> None:
+        self.scene = scene
+        self._core = _beltrs.Simulation(scene.to_dict())
+        self.last_result: Optional[Result] = None
+
+    # --- model facts -------------------------------------------------------------------
+    @property
+    def dt(self) -> float:
+        """Time step in use, s."""
+        return float(self._core.dt)
+
+    @property
+    def dt_limit(self) -> float:
+        """Estimated explicit stability limit, s."""
+        return float(self._core.dt_limit)
+
+    @property
+    def dt_cause(self) -> str:
+        """Which stiffness sets the stability limit."""
+        return str(self._core.dt_cause)
+
+    @property
+    def stages(self) -> list[str]:
+        """Compiled stages, in the order they run; effects the scene does not use are absent."""
+        return list(self._core.stages)
+
+    @property
+    def nodes(self) -> int:
+        """Number of belt nodes (= elements)."""
+        return int(self._core.nodes)
+
+    @property
+    def time(self) -> float:
+        """Simulated time, s."""
+        return float(self._core.time)
+
+    @property
+    def path_length(self) -> float:
+        """Length of the initial belt path, m."""
+        return float(self._core.path_length)
+
+    @property
+    def wrap_angles(self) -> list[float]:
+        """Wrap angle on each pulley on the initial path, rad."""
+        return list(self._core.wrap_angles)
+
+    @property
+    def rest_length(self) -> np.ndarray:
+        """Element rest lengths, m, shape ``[E]``."""
+        return np.asarray(self._core.rest_length)
+
+    @property
+    def node_mass(self) -> np.ndarray:
+        """Node masses, kg, shape ``[E]``."""
+        return np.asarray(self._core.node_mass)
+
+    # --- state -------------------------------------------------------------------------
+    def state(self) -> dict[str, Any]:
+        """Current state as NumPy arrays (positions m, half-step velocities m/s, ...)."""
+        return dict(self._core.state())
+
+    def tensions(self) -> np.ndarray:
+        """Element tensions at the current state, N, shape ``[E]``."""
+        return np.asarray(self._core.tensions())
+
+    def forces(self) -> np.ndarray:
+        """Net force on each node at the current state, N, shape ``[E, 2]``."""
+        return np.asarray(self._core.forces())
+
+    def energies(self) -> dict[str, float]:
+        """Energies of the current state, J."""
+        return dict(self._core.energies())
+
+    @property
+    def takeup_travel(self) -> np.ndarray:
+        """Travel of each takeup from its initial position along its pull direction, m."""
+        return np.asarray(self.state()["takeup_travel"])
+
+    # --- actions -----------------------------------------------------------------------
+    def stabilise(
+        self,
+        method: str = "fire",
+        *,
+        friction: bool = False,
+        tolerance: float = 1e-7,
+        max_steps: int = 5_000_000,
+    ) -> dict[str, Any]:
+        """Relax to static equilibrium (thesis §6.2); simulated time does not advance.
+
+        Args:
+            method: ``"fire"`` (default, fast inertial relaxation) or ``"kinetic"``
+                (kinetic-energy damping of the thesis, applied per degree of freedom).
+            friction: keep belt friction on while relaxing (locks in lower tensions around
+                the pulleys, thesis fig. 6.6). Default False (thesis §6.2).
+            tolerance: converged when the largest out-of-balance force is below this
+                fraction of the largest tension. Default 1e-7.
+            max_steps: give up after this many relaxation steps.
+
+        Returns:
+            dict with ``steps``, ``residual``, ``converged``, ``resets``.
+
+        Raises:
+            beltrs.BeltrsError: if the relaxation does not converge.
+        """
+        report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
+        if not report["converged"]:
+            raise _beltrs.BeltrsError(
+                f"stabilise did not converge in {report['steps']} steps: residual {report['residual']:.3e} "
+                f"> tolerance {tolerance:.3e}"
+            )
+        return report
+
+    def run(
+        self,
+        duration: float,
+        *,
+        record_every: Optional[int] = None,
+        record_interval: Optional[float] = None,
+        tension: bool = True,
+        node_position: bool = True,
+        node_velocity: bool = True,
+    ) -> Result:
+        """Run for ``duration`` seconds and return what was recorded.
+
+        Args:
+            duration: simulated time, s (rounded to whole steps).
+            record_every: sample every this many steps. Default: every step unless
+                ``record_interval`` is given.
+            record_interval: sample about every this many seconds (rounded to whole steps).
+            tension, node_position, node_velocity: record these large arrays. Default True.
+
+        Returns:
+            :class:`Result`. If Ctrl-C stops the run, it holds everything recorded so far
+            and ``interrupted`` is True.
+
+        Raises:
+            beltrs.DivergenceError: the state became non-finite; the message names time,
+                node and quantity, and ``err.result`` holds what was recorded before.
+        """
+        duration = float(duration)
+        if not np.isfinite(duration) or duration < 0:
+            raise _beltrs.SceneError(f"duration = {duration}: must be a finite number ≥ 0 (s)")
+        if record_every is not None and record_interval is not None:
+            raise _beltrs.SceneError("give record_every or record_interval, not both")
+        every = 1
+        if record_every is not None:
+            if int(record_every) < 1:
+                raise _beltrs.SceneError(f"record_every = {record_every}: must be ≥ 1")
+            every = int(record_every)
+        elif record_interval is not None:
+            if not (np.isfinite(record_interval) and record_interval > 0):
+                raise _beltrs.SceneError(f"record_interval = {record_interval}: must be > 0 (s)")
+            every = max(1, int(round(record_interval / self.dt)))
+        steps = int(round(duration / self.dt))
+        t0 = _time.perf_counter()
+        try:
+            self._core.run(steps, every, tension, node_position, node_velocity)
+        except _beltrs.DivergenceError as err:
+            err.result = self._result(_time.perf_counter() - t0)  # type: ignore[attr-defined]
+            self.last_result = err.result  # type: ignore[attr-defined]
+            raise
+        self.last_result = self._result(_time.perf_counter() - t0)
+        return self.last_result
+
+    def _result(self, wall: float) -> Result:
+        return Result._from_core(
+            self._core.recording(),
+            dt=self.dt,
+            stages=self.stages,
+            wall_time=wall,
+            interrupted=bool(self._core.interrupted),
+            pulley_names=[p.name for p in self.scene.pulleys],
+        )
+
+    def step(self, steps: int = 1) -> None:
+        """Advance ``steps`` steps without recording."""
+        self._core.step(int(steps))
+
+    # --- change a parameter and continue ----------------------------------------------
+    def set_scene(self, scene: Scene) -> None:
+        """Swap in changed parameters and keep the state. The belt discretisation, the
+        pulley centres and takeup lines must stay the same."""
+        self._core.set_scene(scene.to_dict())
+        self.scene = scene
+
+    def _pulley(self, pulley: Union[int, str]) -> int:
+        return self.scene.pulley_index(pulley) if isinstance(pulley, str) else int(pulley)
+
+    def _with_pulley(self, pulley: Union[int, str], **changes: Any) -> None:
+        j = self._pulley(pulley)
+        pulleys = list(self.scene.pulleys)
+        pulleys[j] = replace(pulleys[j], **changes)
+        self.set_scene(replace(self.scene, pulleys=pulleys))
+
+    def set_counterweight(self, pulley: Union[int, str], mass: float) -> None:
+        """Set the takeup counterweight of ``pulley`` to ``mass`` kg (e.g. a 10 % step)."""
+        j = self._pulley(pulley)
+        takeup = self.scene.pulleys[j].takeup
+        if takeup is None:
+            raise _beltrs.SceneError(f"pulleys[{j}].takeup = None: this pulley has no takeup")
+        self._with_pulley(j, takeup=replace(takeup, counterweight=mass))
+
+    def set_drive(self, pulley: Union[int, str], drive: Optional[Drive]) -> None:
+        """Set (or remove, with None) the drive of ``pulley``. Drive tables use absolute
+        simulated time (see :attr:`time`)."""
+        self._with_pulley(pulley, drive=drive)
+
+    def set_friction(self, pulley: Union[int, str], friction: Optional[Friction]) -> None:
+        """Set (or remove) belt friction on ``pulley``."""
+        self._with_pulley(pulley, friction=friction)
+
+    # --- profiling ---------------------------------------------------------------------
+    def set_profiling(self, on: bool) -> None:
+        """Per-stage timing on (zeroed) or off. Off costs nothing."""
+        self._core.set_profiling(bool(on))
+
+    def profile(self) -> dict[str, float]:
+        """Seconds spent in each stage since profiling was turned on."""
+        return dict(self._core.profile())

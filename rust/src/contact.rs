@@ -1,0 +1,235 @@
+//! Penalty contact between the belt and pulleys (at the nodes, thesis eq. 4.70–4.75) and
+//! between the belt and idlers (on the element centre line, thesis eq. 4.95–4.102).
+//!
+//! The thesis writes the pulley law as f = k_c (R − a)/R; here the stiffness is per metre
+//! of penetration, f = k (R − a), so k = k_c / R. Contact damping (optional, not in the
+//! thesis) acts on the normal approach speed and never pulls the belt onto the body.
+
+use crate::state::ContactWindow;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// Contacts of one pulley found this step; reused every step without reallocating.
+#[derive(Debug, Clone, Default)]
+pub struct PulleyContacts {
+    /// Node index of each contact.
+    pub node: Vec<usize>,
+    /// Outward unit normal at the node (from the pulley centre to the node).
+    pub normal: Vec<V2>,
+    /// Normal force on the node, N (≥ 0).
+    pub normal_force: Vec<f64>,
+    /// Penetration, m.
+    pub penetration: Vec<f64>,
+}
+
+impl PulleyContacts {
+    /// Forget last step's contacts, keep the capacity.
+    pub fn clear(&mut self) {
+        self.node.clear();
+        self.normal.clear();
+        self.normal_force.clear();
+        self.penetration.clear();
+    }
+    /// Number of nodes in contact.
+    pub fn len(&self) -> usize {
+        self.node.len()
+    }
+    /// True if nothing touches.
+    pub fn is_empty(&self) -> bool {
+        self.node.is_empty()
+    }
+}
+
+/// Inputs describing one pulley at this instant.
+#[derive(Debug, Clone, Copy)]
+pub struct PulleyBody {
+    /// Centre, m.
+    pub center: V2,
+    /// Velocity of the centre, m/s.
+    pub center_velocity: V2,
+    /// Radius, m.
+    pub radius: f64,
+    /// Penalty stiffness, N/m.
+    pub stiffness: f64,
+    /// Normal damping, N·s/m.
+    pub damping: f64,
+    /// Extra distance beyond the radius within which nodes stay in the search window, m.
+    pub margin: f64,
+}
+
+/// Keep the window on the run of nodes within `radius + margin` of the centre. The window
+/// moves with the belt by at most a few nodes a step, so this is O(1) per step; only an
+/// empty window (belt lifted clear) triggers a full scan.
+pub fn update_window(window: &mut ContactWindow, x: &[V2], body: &PulleyBody) {
+    let n = x.len();
+    let reach = body.radius + body.margin;
+    let reach2 = reach * reach;
+    let near = |i: usize| (x[i] - body.center).norm_squared() < reach2;
+    if window.len == 0 {
+        match (0..n).find(|&i| near(i)) {
+            Some(i) => {
+                window.first = i;
+                window.len = 1;
+            }
+            None => return,
+        }
+    }
+    // Grow backwards, shrink the front, grow forwards, shrink the back.
+    while window.len < n && near((window.first + n - 1) % n) {
+        window.first = (window.first + n - 1) % n;
+        window.len += 1;
+    }
+    while window.len > 0 && !near(window.first) {
+        window.first = (window.first + 1) % n;
+        window.len -= 1;
+    }
+    while window.len > 0 && window.len < n && near((window.first + window.len) % n) {
+        window.len += 1;
+    }
+    while window.len > 0 && !near((window.first + window.len - 1) % n) {
+        window.len -= 1;
+    }
+}
+
+/// Nodal penalty contact with one pulley (thesis eq. 4.70–4.75). Adds the contact forces
+/// to `force`, records each contact in `out`, and returns the resultant force on the pulley.
+pub fn pulley_contact(
+    window: &ContactWindow,
+    x: &[V2],
+    v: &[V2],
+    body: &PulleyBody,
+    force: &mut [V2],
+    out: &mut PulleyContacts,
+) -> V2 {
+    out.clear();
+    let n = x.len();
+    let mut on_pulley = V2::zeros();
+    let r2 = body.radius * body.radius;
+    for k in 0..window.len {
+        let i = (window.first + k) % n;
+        let rel = x[i] - body.center;
+        let a2 = rel.norm_squared();
+        if a2 >= r2 {
+            continue;
+        }
+        let a = a2.sqrt();
+        let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
+        let depth = body.radius - a;
+        let approach = -(v[i] - body.center_velocity).dot(&normal);
+        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+        let f = normal * fn_;
+        force[i] += f;
+        on_pulley -= f;
+        out.node.push(i);
+        out.normal.push(normal);
+        out.normal_force.push(fn_);
+        out.penetration.push(depth);
+    }
+    on_pulley
+}
+
+/// Distance from `c` to the segment [p, q]: (distance, parameter γ ∈ [0, 1] of the closest
+/// point, closest point).
+#[inline]
+pub fn segment_distance(c: V2, p: V2, q: V2) -> (f64, f64, V2) {
+    let d = q - p;
+    let len2 = d.norm_squared();
+    let gamma = if len2 > 0.0 {
+        ((c - p).dot(&d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let closest = p + d * gamma;
+    ((c - closest).norm(), gamma, closest)
+}
+
+/// One idler contact found this step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct IdlerContact {
+    /// True if the belt touches the idler.
+    pub active: bool,
+    /// Element in contact (joins `element` and `element + 1`).
+    pub element: usize,
+    /// Position of the contact point along the element, 0 at its first node (thesis γ).
+    pub gamma: f64,
+    /// Unit normal from the idler centre towards the belt.
+    pub normal: V2,
+    /// Normal force on the belt, N.
+    pub normal_force: f64,
+    /// Penetration, m.
+    pub penetration: f64,
+}
+
+/// Inputs describing one idler.
+#[derive(Debug, Clone, Copy)]
+pub struct IdlerBody {
+    /// Centre, m.
+    pub center: V2,
+    /// Radius, m.
+    pub radius: f64,
+    /// Penalty stiffness, N/m.
+    pub stiffness: f64,
+    /// Normal damping, N·s/m.
+    pub damping: f64,
+}
+
+/// Centre-line contact with one idler (thesis eq. 4.95–4.102). The idler tracks the nearest
+/// element by stepping to a neighbour while that is nearer, so the search is local. The
+/// closest point on the element splits the force by the lever rule: (1 − γ) to the first
+/// node and γ to the second (the thesis text swaps d and e in eq. 4.100–4.101; its code has
+/// them right).
+pub fn idler_contact(
+    element: &mut usize,
+    x: &[V2],
+    v: &[V2],
+    body: &IdlerBody,
+    force: &mut [V2],
+) -> IdlerContact {
+    let n = x.len();
+    let dist_of = |e: usize| segment_distance(body.center, x[e], x[(e + 1) % n]);
+    let mut e = *element % n;
+    let mut best = dist_of(e);
+    for _ in 0..n {
+        let back = (e + n - 1) % n;
+        let fwd = (e + 1) % n;
+        let db = dist_of(back);
+        let df = dist_of(fwd);
+        if db.0 < best.0 && db.0 <= df.0 {
+            e = back;
+            best = db;
+        } else if df.0 < best.0 {
+            e = fwd;
+            best = df;
+        } else {
+            break;
+        }
+    }
+    *element = e;
+    let (dist, gamma, closest) = best;
+    if dist >= body.radius {
+        return IdlerContact::default();
+    }
+    let j = (e + 1) % n;
+    let normal = if dist > 0.0 {
+        (closest - body.center) / dist
+    } else {
+        // The centre line passes through the idler centre: push along the element normal.
+        let d = x[j] - x[e];
+        V2::new(-d.y, d.x).normalize()
+    };
+    let depth = body.radius - dist;
+    let vc = v[e] * (1.0 - gamma) + v[j] * gamma;
+    let approach = -vc.dot(&normal);
+    let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+    force[e] += normal * (fn_ * (1.0 - gamma));
+    force[j] += normal * (fn_ * gamma);
+    IdlerContact {
+        active: true,
+        element: e,
+        gamma,
+        normal,
+        normal_force: fn_,
+        penetration: depth,
+    }
+}

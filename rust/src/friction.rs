@@ -1,0 +1,188 @@
+//! Stick-force friction (Taylor & Preece 1989, extended by Hustrulid to external forces and
+//! multiple contacts: thesis eq. 4.76–4.94 and figure 4.9).
+//!
+//! The stick force is the tangential force that brings the contact to zero relative
+//! tangential speed by the end of the step. It is applied if it stays within µs·N;
+//! otherwise the node slips with µk·N in the same direction, its force becomes a known
+//! torque on the pulley, and the remaining nodes are solved again. Because the applied force
+//! never exceeds the stick force, friction can stop a slip but never reverse it: there is
+//! no oscillation about zero relative speed.
+
+use crate::contact::{IdlerContact, PulleyContacts};
+use crate::forces::perp;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// Scratch per pulley for the friction solve; reused every step.
+#[derive(Debug, Clone, Default)]
+pub struct StickScratch {
+    /// m_i·v_n,i/Δt + t_i·F_i for each contact (the stick force if the pulley did not move).
+    free: Vec<f64>,
+    /// Whether each contact is still sticking.
+    sticking: Vec<bool>,
+    /// Tangential friction force of each contact (positive along t_i on the pulley), N.
+    pub force: Vec<f64>,
+}
+
+/// The pulley seen by the friction solve.
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionPulley {
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia, kg·m².
+    pub inertia: f64,
+    /// Angular speed at t − Δt/2, rad/s.
+    pub omega: f64,
+    /// Centre velocity, m/s.
+    pub center_velocity: V2,
+    /// Torque from everything but belt friction (drive), N·m.
+    pub applied_torque: f64,
+    /// Static and kinetic coefficients.
+    pub mu_static: f64,
+    /// Kinetic coefficient.
+    pub mu_kinetic: f64,
+}
+
+/// Result of one pulley's friction solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FrictionOutcome {
+    /// Torque of belt friction on the pulley, N·m (counter-clockwise positive).
+    pub torque: f64,
+    /// Resultant friction force on the pulley, N.
+    pub force: V2,
+    /// Sum of the tangential friction forces, N.
+    pub tangential: f64,
+    /// Number of slipping nodes.
+    pub slipping: usize,
+}
+
+/// Solve and apply stick-force friction for the nodes touching one pulley
+/// (thesis eq. 4.91 with the slip loop of figure 4.9).
+///
+/// With t_i the counter-clockwise tangent at node i, v_n,i = t_i·(v_i − v_p) − Rω the
+/// relative speed, F_i all other forces on the node, and the sticking set S:
+/// f_i = m_i v_n,i/Δt + t_i·F_i − m_i R (T + R·A)/(I + R² M), where A and M sum
+/// m_j v_n,j/Δt + t_j·F_j and m_j over S and T is the applied torque plus the torque of the
+/// slipping nodes. The node receives −f_i t_i, the pulley +f_i t_i and torque R f_i.
+#[allow(clippy::too_many_arguments)]
+pub fn pulley_stick_friction(
+    contacts: &PulleyContacts,
+    pulley: &FrictionPulley,
+    v: &[V2],
+    mass: &[f64],
+    dt: f64,
+    force: &mut [V2],
+    scratch: &mut StickScratch,
+) -> FrictionOutcome {
+    let nc = contacts.len();
+    scratch.free.clear();
+    scratch.sticking.clear();
+    scratch.force.clear();
+    let r = pulley.radius;
+    for k in 0..nc {
+        let i = contacts.node[k];
+        let t = perp(contacts.normal[k]);
+        let vn = t.dot(&(v[i] - pulley.center_velocity)) - r * pulley.omega;
+        scratch.free.push(mass[i] * vn / dt + t.dot(&force[i]));
+        scratch.sticking.push(true);
+        scratch.force.push(0.0);
+    }
+    let mut known_torque = pulley.applied_torque;
+    let mut slipping = 0;
+    loop {
+        let (mut a_sum, mut m_sum) = (0.0, 0.0);
+        for k in 0..nc {
+            if scratch.sticking[k] {
+                a_sum += scratch.free[k];
+                m_sum += mass[contacts.node[k]];
+            }
+        }
+        let alpha = (known_torque + r * a_sum) / (pulley.inertia + r * r * m_sum);
+        let mut new_slip = false;
+        for k in 0..nc {
+            if !scratch.sticking[k] {
+                continue;
+            }
+            let f = scratch.free[k] - mass[contacts.node[k]] * r * alpha;
+            let n = contacts.normal_force[k];
+            if f.abs() > pulley.mu_static * n {
+                let fk = pulley.mu_kinetic * n * f.signum();
+                scratch.force[k] = fk;
+                scratch.sticking[k] = false;
+                known_torque += r * fk;
+                slipping += 1;
+                new_slip = true;
+            } else {
+                scratch.force[k] = f;
+            }
+        }
+        if !new_slip {
+            break;
+        }
+    }
+    let mut out = FrictionOutcome {
+        slipping,
+        ..Default::default()
+    };
+    for k in 0..nc {
+        let f = scratch.force[k];
+        let t = perp(contacts.normal[k]);
+        force[contacts.node[k]] -= t * f;
+        out.force += t * f;
+        out.tangential += f;
+    }
+    out.torque = r * out.tangential;
+    out
+}
+
+/// The idler seen by the friction solve.
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionIdler {
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia, kg·m².
+    pub inertia: f64,
+    /// Angular speed at t − Δt/2, rad/s.
+    pub omega: f64,
+    /// Static coefficient.
+    pub mu_static: f64,
+    /// Kinetic coefficient.
+    pub mu_kinetic: f64,
+}
+
+/// Stick-force friction at one idler contact point (thesis eq. 4.103–4.117).
+///
+/// The contact point moves with (1 − γ)v_i + γv_{i+1}; the friction force f is shared by
+/// the lever rule. Requiring zero relative tangential speed after the step gives
+/// f = [v_n/Δt + (1−γ) t·F_i/m_i + γ t·F_{i+1}/m_{i+1}] / [(1−γ)²/m_i + γ²/m_{i+1} + R²/I]
+/// (the thesis' eq. 4.114 has a sign slip in the R² term). Returns (f, slipping): the belt
+/// receives −f t, the idler the torque R f.
+pub fn idler_stick_friction(
+    contact: &IdlerContact,
+    idler: &FrictionIdler,
+    v: &[V2],
+    mass: &[f64],
+    dt: f64,
+    force: &mut [V2],
+) -> (f64, bool) {
+    let n = v.len();
+    let (i, j) = (contact.element, (contact.element + 1) % n);
+    let g = contact.gamma;
+    let t = perp(contact.normal);
+    let vc = v[i] * (1.0 - g) + v[j] * g;
+    let vn = t.dot(&vc) - idler.radius * idler.omega;
+    let num = vn / dt + (1.0 - g) * t.dot(&force[i]) / mass[i] + g * t.dot(&force[j]) / mass[j];
+    let den = (1.0 - g) * (1.0 - g) / mass[i]
+        + g * g / mass[j]
+        + idler.radius * idler.radius / idler.inertia;
+    let mut f = num / den;
+    let limit = idler.mu_static * contact.normal_force;
+    let slipping = f.abs() > limit;
+    if slipping {
+        f = idler.mu_kinetic * contact.normal_force * f.signum();
+    }
+    force[i] -= t * (f * (1.0 - g));
+    force[j] -= t * (f * g);
+    (f, slipping)
+}

@@ -1,0 +1,282 @@
+//! The initial belt path around the pulleys and the placement of the belt nodes on it
+//! (thesis §6.1, improved: equal chords, so the initial strain is uniform).
+
+use crate::error::{BeltError, BeltResult};
+use crate::scene::PulleySpec;
+use nalgebra::Vector2;
+use std::f64::consts::TAU;
+
+/// One piece of the belt path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Segment {
+    /// A free span from `a` to `b`.
+    Line {
+        /// Start point, m.
+        a: Vector2<f64>,
+        /// End point, m.
+        b: Vector2<f64>,
+    },
+    /// A wrap on a pulley: `sweep` > 0 is counter-clockwise.
+    Arc {
+        /// Pulley centre, m.
+        center: Vector2<f64>,
+        /// Radius, m.
+        radius: f64,
+        /// Polar angle of the start point, rad.
+        start: f64,
+        /// Signed swept angle, rad.
+        sweep: f64,
+    },
+}
+
+impl Segment {
+    /// Length along the path, m.
+    pub fn length(&self) -> f64 {
+        match *self {
+            Segment::Line { a, b } => (b - a).norm(),
+            Segment::Arc { radius, sweep, .. } => radius * sweep.abs(),
+        }
+    }
+
+    /// Point at arc-length `s` ∈ [0, length] from the segment start.
+    pub fn point(&self, s: f64) -> Vector2<f64> {
+        match *self {
+            Segment::Line { a, b } => {
+                let len = (b - a).norm();
+                if len == 0.0 {
+                    a
+                } else {
+                    a + (b - a) * (s / len)
+                }
+            }
+            Segment::Arc {
+                center,
+                radius,
+                start,
+                sweep,
+            } => {
+                let angle = start + sweep.signum() * s / radius;
+                center + Vector2::new(angle.cos(), angle.sin()) * radius
+            }
+        }
+    }
+}
+
+/// The closed belt path: spans and wraps in belt order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeltPath {
+    /// Segments in order; arcs and lines alternate, starting with the wrap on pulley 0.
+    pub segments: Vec<Segment>,
+    /// Cumulative arc length at the start of each segment, m.
+    pub starts: Vec<f64>,
+    /// Total length, m.
+    pub length: f64,
+    /// Wrap angle on each pulley, rad.
+    pub wrap_angles: Vec<f64>,
+}
+
+impl BeltPath {
+    /// Build the path from the pulleys in belt order. The span from pulley i to i+1 is the
+    /// common tangent that leaves i on its wrap side and meets i+1 on its wrap side.
+    pub fn from_pulleys(pulleys: &[PulleySpec]) -> BeltResult<BeltPath> {
+        let n = pulleys.len();
+        // Tangent points: leave[i] on pulley i towards i+1, arrive[i+1] on pulley i+1.
+        let mut leave = vec![Vector2::zeros(); n];
+        let mut arrive = vec![Vector2::zeros(); n];
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let (pi, pj) = (&pulleys[i], &pulleys[j]);
+            let ci = Vector2::new(pi.center[0], pi.center[1]);
+            let cj = Vector2::new(pj.center[0], pj.center[1]);
+            let d = cj - ci;
+            let dist = d.norm();
+            // Signed radii: a counter-clockwise wrap puts the centre on the belt's left.
+            let rho_i = pi.wrap.sign() * pi.radius;
+            let rho_j = pj.wrap.sign() * pj.radius;
+            let delta = rho_j - rho_i;
+            if dist <= delta.abs() {
+                return Err(BeltError::invalid(
+                    format!("pulleys[{j}].center"),
+                    format!("[{}, {}]", pj.center[0], pj.center[1]),
+                    format!("no belt span from pulleys[{i}] to pulleys[{j}] exists with these wraps (one circle lies inside the other's tangent region)"),
+                ));
+            }
+            // Direction of travel u with n·(cj − ci) = delta, n = left normal of u.
+            let phi = d.y.atan2(d.x);
+            let alpha = phi - (delta / dist).asin();
+            let u = Vector2::new(alpha.cos(), alpha.sin());
+            let left = Vector2::new(-u.y, u.x);
+            leave[i] = ci - left * rho_i;
+            arrive[j] = cj - left * rho_j;
+        }
+        let mut segments = Vec::with_capacity(2 * n);
+        let mut wrap_angles = Vec::with_capacity(n);
+        for i in 0..n {
+            let p = &pulleys[i];
+            let c = Vector2::new(p.center[0], p.center[1]);
+            let a0 = (arrive[i] - c).y.atan2((arrive[i] - c).x);
+            let a1 = (leave[i] - c).y.atan2((leave[i] - c).x);
+            let mut sweep = (a1 - a0) * p.wrap.sign();
+            sweep = sweep.rem_euclid(TAU);
+            if sweep > TAU - 1e-12 {
+                sweep = 0.0;
+            }
+            wrap_angles.push(sweep);
+            segments.push(Segment::Arc {
+                center: c,
+                radius: p.radius,
+                start: a0,
+                sweep: sweep * p.wrap.sign(),
+            });
+            segments.push(Segment::Line {
+                a: leave[i],
+                b: arrive[(i + 1) % n],
+            });
+        }
+        let mut starts = Vec::with_capacity(segments.len());
+        let mut total = 0.0;
+        for s in &segments {
+            starts.push(total);
+            total += s.length();
+        }
+        Ok(BeltPath {
+            segments,
+            starts,
+            length: total,
+            wrap_angles,
+        })
+    }
+
+    /// Point at arc length `s` (taken modulo the path length), m.
+    pub fn point(&self, s: f64) -> Vector2<f64> {
+        let s = s.rem_euclid(self.length);
+        let k = match self.starts.binary_search_by(|x| x.partial_cmp(&s).unwrap()) {
+            Ok(k) => k,
+            Err(k) => k - 1,
+        };
+        let seg = &self.segments[k];
+        seg.point((s - self.starts[k]).min(seg.length()))
+    }
+
+    /// From arc length `s0`, the arc length of the next point on the path at straight-line
+    /// distance `chord` (searched within `[s0, s0 + 2·chord]`, enough for wraps ≤ 180° per
+    /// chord).
+    fn next_at_chord(&self, s0: f64, chord: f64) -> f64 {
+        let p0 = self.point(s0);
+        let (mut lo, mut hi) = (s0, s0 + chord);
+        // Expand until the chord is reached (arc ≥ chord always, so start at s0 + chord).
+        while (self.point(hi) - p0).norm() < chord && hi < s0 + 4.0 * chord {
+            lo = hi;
+            hi += 0.25 * chord;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if (self.point(mid) - p0).norm() < chord {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// Place `n` nodes on the path so that all `n` chords (including the closing one) are
+    /// equal. Returns the node positions and the common chord length. Starting at s = 0.
+    pub fn equal_chord_nodes(&self, n: usize) -> (Vec<Vector2<f64>>, f64) {
+        let walk = |chord: f64| -> f64 {
+            let mut s = 0.0;
+            for _ in 0..n {
+                s = self.next_at_chord(s, chord);
+            }
+            s
+        };
+        // walk(c) increases with c; find walk(c) = length by bisection.
+        let arc = self.length / n as f64;
+        let (mut lo, mut hi) = (0.5 * arc, arc);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if walk(mid) < self.length {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-13 * arc {
+                break;
+            }
+        }
+        let chord = 0.5 * (lo + hi);
+        let mut nodes = Vec::with_capacity(n);
+        let mut s = 0.0;
+        for _ in 0..n {
+            nodes.push(self.point(s));
+            s = self.next_at_chord(s, chord);
+        }
+        (nodes, chord)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Wrap;
+
+    fn loop_h() -> Vec<PulleySpec> {
+        vec![
+            PulleySpec {
+                center: [0.0, 100.0],
+                radius: 5.0,
+                ..Default::default()
+            },
+            PulleySpec {
+                center: [0.0, 0.0],
+                radius: 5.0,
+                ..Default::default()
+            },
+        ]
+    }
+
+    #[test]
+    fn two_pulley_loop_has_vertical_strands_and_half_wraps() {
+        let path = BeltPath::from_pulleys(&loop_h()).unwrap();
+        let expected = 200.0 + 10.0 * std::f64::consts::PI;
+        assert!((path.length - expected).abs() < 1e-9, "{}", path.length);
+        for w in &path.wrap_angles {
+            assert!((w - std::f64::consts::PI).abs() < 1e-12);
+        }
+        // Counter-clockwise around the upper pulley: belt goes up at x = +5, down at x = −5.
+        match path.segments[1] {
+            Segment::Line { a, b } => {
+                assert!(
+                    (a.x + 5.0).abs() < 1e-12 && (b.x + 5.0).abs() < 1e-12,
+                    "{a} {b}"
+                );
+                assert!(a.y > b.y);
+            }
+            _ => panic!("expected a line"),
+        }
+    }
+
+    #[test]
+    fn crossed_belt_wraps_are_consistent() {
+        let mut p = loop_h();
+        p[1].wrap = Wrap::Clockwise;
+        let path = BeltPath::from_pulleys(&p).unwrap();
+        // Crossed belt: wraps exceed 180°, both equal by symmetry.
+        assert!(path.wrap_angles[0] > std::f64::consts::PI);
+        assert!((path.wrap_angles[0] - path.wrap_angles[1]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn equal_chords_close_the_loop() {
+        let path = BeltPath::from_pulleys(&loop_h()).unwrap();
+        let (nodes, chord) = path.equal_chord_nodes(89);
+        for i in 0..nodes.len() {
+            let l = (nodes[(i + 1) % nodes.len()] - nodes[i]).norm();
+            assert!(
+                (l - chord).abs() < 1e-9 * chord,
+                "chord {i}: {l} vs {chord}"
+            );
+        }
+        assert!(chord < path.length / 89.0);
+    }
+}

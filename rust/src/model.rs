@@ -1,0 +1,453 @@
+//! The compiled model: read-only arrays and the list of stages this scene needs.
+//!
+//! Compilation turns a validated [`Scene`] into per-element and per-node arrays, places the
+//! belt on its path, estimates the stable time step and decides which stages run. Nothing
+//! here changes during a run; the mutable part lives in [`crate::state::State`].
+
+use crate::error::{BeltError, BeltResult};
+use crate::geometry::BeltPath;
+use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
+use nalgebra::Vector2;
+
+/// One step of the force evaluation. The compiled list holds only the stages a scene needs
+/// (a disabled effect is not in the list, so it costs nothing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Node weights m·g (thesis eq. 4.49).
+    Gravity,
+    /// Elastic axial springs (thesis eq. 4.40).
+    Axial,
+    /// Kelvin-Voigt axial springs with dashpots (thesis eq. 4.40 + 4.56), replaces `Axial`.
+    AxialDamped,
+    /// Rotational bending springs (thesis eq. 4.47, signs re-derived).
+    Bending,
+    /// Nodal penalty contact with pulleys (thesis eq. 4.70–4.75).
+    PulleyContact,
+    /// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102).
+    IdlerContact,
+    /// Drive torques T(t, ω) (thesis eq. 4.66).
+    Drives,
+    /// Stick-force friction between belt and pulleys (thesis eq. 4.76–4.94, figure 4.9).
+    PulleyFriction,
+    /// Stick-force friction between belt and idlers (thesis eq. 4.103–4.117, re-derived).
+    IdlerFriction,
+    /// Coulomb brakes with holding at rest.
+    Brakes,
+    /// Gravity-takeup translation (thesis eq. 4.63–4.65).
+    Takeups,
+}
+
+impl Stage {
+    /// Stable snake_case name, as shown in Python (`model.stages`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Gravity => "gravity",
+            Stage::Axial => "axial",
+            Stage::AxialDamped => "axial_damped",
+            Stage::Bending => "bending",
+            Stage::PulleyContact => "pulley_contact",
+            Stage::IdlerContact => "idler_contact",
+            Stage::Drives => "drives",
+            Stage::PulleyFriction => "pulley_friction",
+            Stage::IdlerFriction => "idler_friction",
+            Stage::Brakes => "brakes",
+            Stage::Takeups => "takeups",
+        }
+    }
+}
+
+/// Compiled gravity takeup.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TakeupModel {
+    /// Unit vector of the takeup line (direction of the counterweight pull).
+    pub direction: Vector2<f64>,
+    /// Translating mass: pulley + counterweight, kg.
+    pub moving_mass: f64,
+    /// Constant force along `direction` from the counterweight and the pulley weight, N.
+    pub pull: f64,
+    /// Travel limits from the initial position, m.
+    pub travel_min: f64,
+    /// Travel limits from the initial position, m.
+    pub travel_max: f64,
+}
+
+/// Compiled pulley.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PulleyModel {
+    /// Name for messages.
+    pub name: String,
+    /// Initial centre, m.
+    pub center: Vector2<f64>,
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia including drive inertia, kg·m².
+    pub inertia: f64,
+    /// Contact stiffness, N/m.
+    pub contact_stiffness: f64,
+    /// Contact damping, N·s/m.
+    pub contact_damping: f64,
+    /// Friction model.
+    pub friction: FrictionModel,
+    /// Takeup, if the pulley translates.
+    pub takeup: Option<TakeupModel>,
+    /// Drive, if any.
+    pub drive: Option<DriveSpec>,
+    /// Brake, if any.
+    pub brake: Option<BrakeSpec>,
+    /// Search margin beyond the radius for the contact window, m.
+    pub window_margin: f64,
+}
+
+/// Compiled idler.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdlerModel {
+    /// Centre, m.
+    pub center: Vector2<f64>,
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia, kg·m².
+    pub inertia: f64,
+    /// Contact stiffness, N/m.
+    pub contact_stiffness: f64,
+    /// Contact damping, N·s/m.
+    pub contact_damping: f64,
+    /// Friction model.
+    pub friction: FrictionModel,
+}
+
+/// The read-only compiled model.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// The scene this model was compiled from.
+    pub scene: Scene,
+    /// Number of nodes (= number of elements; the belt is a closed loop).
+    pub nodes: usize,
+    /// Node masses, kg (thesis eq. 4.4).
+    pub mass: Vec<f64>,
+    /// 1 / node mass, 1/kg.
+    pub inv_mass: Vec<f64>,
+    /// Element rest lengths, m. Element e joins node e and node e+1 (mod n).
+    pub rest_length: Vec<f64>,
+    /// Element axial stiffness EA/l⁰, N/m (thesis eq. 4.1).
+    pub axial_stiffness: Vec<f64>,
+    /// Element damping coefficient, N·s/m (thesis eq. 4.3).
+    pub axial_damping: Vec<f64>,
+    /// Bending spring at each node, N·m/rad: EI / (mean length of the two elements) (eq. 4.11).
+    pub bending_stiffness: Vec<f64>,
+    /// Elements carry no compression.
+    pub tension_only: bool,
+    /// Gravitational acceleration, m/s².
+    pub gravity: f64,
+    /// Pulleys.
+    pub pulleys: Vec<PulleyModel>,
+    /// Idlers.
+    pub idlers: Vec<IdlerModel>,
+    /// The initial path.
+    pub path: BeltPath,
+    /// Initial node positions, m.
+    pub initial_positions: Vec<Vector2<f64>>,
+    /// Stages this scene runs, in order.
+    pub stages: Vec<Stage>,
+    /// Time step in use, s.
+    pub dt: f64,
+    /// Estimated critical (stability-limit) time step, s.
+    pub dt_limit: f64,
+    /// Which term sets the limit.
+    pub dt_cause: String,
+    /// Gershgorin bound of the stiffness seen by each node, N/m (also used for the mass
+    /// scaling of the fast relaxation).
+    pub node_stiffness_bound: Vec<f64>,
+    /// Same bound for each takeup's translation, N/m (0 for fixed pulleys).
+    pub takeup_stiffness_bound: Vec<f64>,
+}
+
+impl Model {
+    /// Validate the scene and compile it.
+    pub fn compile(scene: &Scene) -> BeltResult<Model> {
+        scene.validate()?;
+        let path = BeltPath::from_pulleys(&scene.pulleys)?;
+        let belt = &scene.belt;
+        let belt_length = belt.length.unwrap_or(path.length);
+        let min_radius = scene
+            .pulleys
+            .iter()
+            .map(|p| p.radius)
+            .fold(f64::INFINITY, f64::min);
+        // Strain needed to stretch the belt onto the path.
+        let strain = path.length / belt_length - 1.0;
+        const MAX_PLACEMENT_STRAIN: f64 = 0.05;
+        if strain > MAX_PLACEMENT_STRAIN {
+            return Err(BeltError::invalid(
+                "belt.length",
+                belt_length,
+                format!(
+                    "the belt is too short for its path of {:.6} m: it would be stretched by {:.2} % (limit {} %)",
+                    path.length,
+                    100.0 * strain,
+                    100.0 * MAX_PLACEMENT_STRAIN
+                ),
+            ));
+        }
+        if strain < -MAX_PLACEMENT_STRAIN {
+            return Err(BeltError::invalid(
+                "belt.length",
+                belt_length,
+                format!(
+                    "the belt is too long for its path of {:.6} m: it would be compressed by {:.2} % (limit {} %)",
+                    path.length,
+                    -100.0 * strain,
+                    100.0 * MAX_PLACEMENT_STRAIN
+                ),
+            ));
+        }
+        let n = match belt.elements {
+            Some(n) => n,
+            None => (belt_length / (belt.max_element_angle * min_radius)).ceil() as usize,
+        };
+        if n < 3 {
+            return Err(BeltError::invalid(
+                "belt.elements",
+                n,
+                "a closed belt needs at least 3 elements",
+            ));
+        }
+        let l0 = belt_length / n as f64;
+        // An element longer than the smallest radius spans more than 60° of that pulley: the
+        // chord then cuts deep into the pulley between the nodes and nodal contact fails.
+        if l0 > min_radius {
+            return Err(BeltError::invalid(
+                "belt.elements",
+                n,
+                format!(
+                    "elements of {l0:.6} m are longer than the smallest pulley radius {min_radius} m can hold (limit: one radius, a 60° chord); use more elements"
+                ),
+            ));
+        }
+        let (initial_positions, _chord) = path.equal_chord_nodes(n);
+
+        let rho = belt.mass_per_length;
+        let k = belt.axial_stiffness / l0;
+        let m_el = rho * l0;
+        let c = 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt();
+        let rest_length = vec![l0; n];
+        let axial_stiffness = vec![k; n];
+        let axial_damping = vec![c; n];
+        let mass = vec![m_el; n];
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let bending_stiffness = vec![belt.bending_stiffness / l0; n];
+
+        let pulleys: Vec<PulleyModel> = scene
+            .pulleys
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let drive_inertia = p.drive.as_ref().map_or(0.0, |d| d.inertia);
+                PulleyModel {
+                    name: if p.name.is_empty() {
+                        format!("pulleys[{i}]")
+                    } else {
+                        p.name.clone()
+                    },
+                    center: Vector2::new(p.center[0], p.center[1]),
+                    radius: p.radius,
+                    inertia: p.polar_inertia() + drive_inertia,
+                    contact_stiffness: p.contact_stiffness,
+                    contact_damping: p.contact_damping,
+                    friction: p.friction,
+                    takeup: p.takeup.as_ref().map(|t| {
+                        let dir = Vector2::new(t.direction[0], t.direction[1]);
+                        TakeupModel {
+                            direction: dir,
+                            moving_mass: p.mass + t.counterweight,
+                            // Counterweight pulls along the line; the pulley's own weight
+                            // acts along −y.
+                            pull: t.counterweight * scene.gravity - p.mass * scene.gravity * dir.y,
+                            travel_min: t.travel_min,
+                            travel_max: t.travel_max,
+                        }
+                    }),
+                    drive: p.drive.clone(),
+                    brake: p.brake.clone(),
+                    window_margin: l0,
+                }
+            })
+            .collect();
+        let idlers: Vec<IdlerModel> = scene
+            .idlers
+            .iter()
+            .map(|d| IdlerModel {
+                center: Vector2::new(d.center[0], d.center[1]),
+                radius: d.radius,
+                inertia: d.inertia,
+                contact_stiffness: d.contact_stiffness,
+                contact_damping: d.contact_damping,
+                friction: d.friction,
+            })
+            .collect();
+
+        let stages = Self::select_stages(scene, &pulleys, &idlers);
+        let mut model = Model {
+            scene: scene.clone(),
+            nodes: n,
+            mass,
+            inv_mass,
+            rest_length,
+            axial_stiffness,
+            axial_damping,
+            bending_stiffness,
+            tension_only: belt.tension_only,
+            gravity: scene.gravity,
+            pulleys,
+            idlers,
+            path,
+            initial_positions,
+            stages,
+            dt: 0.0,
+            dt_limit: 0.0,
+            dt_cause: String::new(),
+            node_stiffness_bound: Vec::new(),
+            takeup_stiffness_bound: Vec::new(),
+        };
+        model.estimate_time_step()?;
+        Ok(model)
+    }
+
+    fn select_stages(scene: &Scene, pulleys: &[PulleyModel], idlers: &[IdlerModel]) -> Vec<Stage> {
+        let mut stages = Vec::new();
+        if scene.gravity > 0.0 {
+            stages.push(Stage::Gravity);
+        }
+        stages.push(if scene.belt.damping_ratio > 0.0 {
+            Stage::AxialDamped
+        } else {
+            Stage::Axial
+        });
+        if scene.belt.bending_stiffness > 0.0 {
+            stages.push(Stage::Bending);
+        }
+        stages.push(Stage::PulleyContact);
+        if !idlers.is_empty() {
+            stages.push(Stage::IdlerContact);
+        }
+        if pulleys.iter().any(|p| p.drive.is_some()) {
+            stages.push(Stage::Drives);
+        }
+        if pulleys.iter().any(|p| !p.friction.is_none()) {
+            stages.push(Stage::PulleyFriction);
+        }
+        if idlers.iter().any(|d| !d.friction.is_none()) {
+            stages.push(Stage::IdlerFriction);
+        }
+        if pulleys.iter().any(|p| p.brake.is_some()) {
+            stages.push(Stage::Brakes);
+        }
+        if pulleys.iter().any(|p| p.takeup.is_some()) {
+            stages.push(Stage::Takeups);
+        }
+        stages
+    }
+
+    /// True if the compiled model runs `stage`.
+    pub fn has_stage(&self, stage: Stage) -> bool {
+        self.stages.contains(&stage)
+    }
+
+    /// Estimate the critical step of central differences from a Gershgorin bound of each
+    /// degree of freedom's stiffness: ω² ≤ K/m and Δt_crit = (2/ω)(√(1+ζ²) − ζ).
+    ///
+    /// Per node, K sums the axial row 2(k_{i−1}+k_i) (exact for a uniform chain, whose
+    /// highest mode has ω = 2√(k/m)), the bending row 16·k_θ/l² (zig-zag mode), and the
+    /// stiffest contact a node may meet (pulley or idler penalty). Takeups add the contact
+    /// stiffness of every node that can sit on their wrap.
+    fn estimate_time_step(&mut self) -> BeltResult<()> {
+        let n = self.nodes;
+        let k_contact = self
+            .pulleys
+            .iter()
+            .map(|p| (p.contact_stiffness, p.contact_damping))
+            .chain(
+                self.idlers
+                    .iter()
+                    .map(|d| (d.contact_stiffness, d.contact_damping)),
+            )
+            .fold((0.0f64, 0.0f64), |acc, (k, c)| (acc.0.max(k), acc.1.max(c)));
+        let mut limit = f64::INFINITY;
+        let mut cause = String::new();
+        self.node_stiffness_bound = vec![0.0; n];
+        for i in 0..n {
+            let prev = (i + n - 1) % n;
+            let next = (i + 1) % n;
+            let k_ax = 2.0 * (self.axial_stiffness[prev] + self.axial_stiffness[i]);
+            let c_ax = 2.0 * (self.axial_damping[prev] + self.axial_damping[i]);
+            let l = 0.5 * (self.rest_length[prev] + self.rest_length[i]);
+            let k_bend = if self.has_stage(Stage::Bending) {
+                (self.bending_stiffness[prev]
+                    + 4.0 * self.bending_stiffness[i]
+                    + self.bending_stiffness[next])
+                    * 16.0
+                    / 6.0
+                    / (l * l)
+            } else {
+                0.0
+            };
+            let k_total = k_ax + k_bend + k_contact.0;
+            let c_total = c_ax + k_contact.1;
+            self.node_stiffness_bound[i] = k_total;
+            let m = self.mass[i];
+            let omega = (k_total / m).sqrt();
+            let zeta = c_total / (2.0 * m * omega);
+            let dt = 2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta);
+            if dt < limit {
+                limit = dt;
+                let dominant = if k_contact.0 >= k_ax.max(k_bend) {
+                    "contact"
+                } else if k_ax >= k_bend {
+                    "axial"
+                } else {
+                    "bending"
+                };
+                cause = format!(
+                    "{dominant} stiffness at node {i}: K = {k_total:.4e} N/m on {m:.4e} kg"
+                );
+            }
+        }
+        self.takeup_stiffness_bound = vec![0.0; self.pulleys.len()];
+        for (j, p) in self.pulleys.iter().enumerate() {
+            if let Some(t) = &p.takeup {
+                let wrap = self.path.wrap_angles[j];
+                let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
+                let k = nodes_on_wrap * p.contact_stiffness;
+                self.takeup_stiffness_bound[j] = k;
+                let omega = (k / t.moving_mass).sqrt();
+                let c = nodes_on_wrap * p.contact_damping;
+                let zeta = c / (2.0 * t.moving_mass * omega);
+                let dt = 2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta);
+                if dt < limit {
+                    limit = dt;
+                    cause = format!("contact stiffness on the takeup {}", p.name);
+                }
+            }
+        }
+        self.dt_limit = limit;
+        self.dt_cause = cause;
+        self.dt = match self.scene.solver.time_step {
+            Some(dt) => {
+                if dt > limit {
+                    return Err(BeltError::TimeStepTooLarge {
+                        requested: dt,
+                        limit,
+                        cause: self.dt_cause.clone(),
+                    });
+                }
+                dt
+            }
+            None => self.scene.solver.time_step_fraction * limit,
+        };
+        Ok(())
+    }
+
+    /// Total belt mass, kg.
+    pub fn belt_mass(&self) -> f64 {
+        self.mass.iter().sum()
+    }
+}

@@ -1,0 +1,389 @@
+//! Python bindings: the only module that knows PyO3. Thin wrappers that convert arguments,
+//! call the core, and convert results and errors back. No panic crosses into Python.
+
+mod scene_dict;
+
+use crate::error::BeltError;
+use crate::record::{Channels, Recording, ENERGY_COLUMNS};
+use crate::simulation::{Relaxation, Simulation, StabiliseOptions};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+create_exception!(
+    _beltrs,
+    BeltrsError,
+    PyException,
+    "Base class of every beltrs error."
+);
+create_exception!(
+    _beltrs,
+    SceneError,
+    BeltrsError,
+    "A scene parameter is invalid; the message names the field, the value and the rule."
+);
+create_exception!(
+    _beltrs,
+    TimeStepError,
+    SceneError,
+    "The requested time step exceeds the explicit stability limit."
+);
+create_exception!(
+    _beltrs,
+    DivergenceError,
+    BeltrsError,
+    "The state became non-finite during a run; results recorded before are kept."
+);
+
+fn to_py(err: BeltError) -> PyErr {
+    let msg = err.to_string();
+    match err {
+        BeltError::InvalidParameter { .. } => SceneError::new_err(msg),
+        BeltError::TimeStepTooLarge { .. } => TimeStepError::new_err(msg),
+        BeltError::Diverged { .. } => DivergenceError::new_err(msg),
+        BeltError::Usage(_) => BeltrsError::new_err(msg),
+    }
+}
+
+/// Run `f`, turning a Rust panic into a `BeltrsError` instead of crossing into Python.
+fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(BeltrsError::new_err(format!(
+                "internal error in beltrs (please report): {what}"
+            )))
+        }
+    }
+}
+
+fn array<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    let a = PyArray1::from_slice(py, data);
+    Ok(a.reshape(shape.to_vec())?.into_any())
+}
+
+/// The engine: a compiled model, its state and the current recording.
+#[pyclass(name = "Simulation", module = "beltrs._beltrs")]
+struct PySimulation {
+    inner: Simulation,
+    interrupted: bool,
+}
+
+#[pymethods]
+impl PySimulation {
+    /// Compile a scene given in dict form (see `beltrs.Scene.to_dict`).
+    #[new]
+    fn new(scene: &Bound<'_, PyAny>) -> PyResult<Self> {
+        guarded(|| {
+            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            let inner = Simulation::new(&scene).map_err(to_py)?;
+            Ok(PySimulation {
+                inner,
+                interrupted: false,
+            })
+        })
+    }
+
+    /// Replace the scene parameters and keep the state.
+    fn set_scene(&mut self, scene: &Bound<'_, PyAny>) -> PyResult<()> {
+        guarded(|| {
+            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            self.inner.set_scene(&scene).map_err(to_py)
+        })
+    }
+
+    /// Time step in use, s.
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.inner.model.dt
+    }
+
+    /// Estimated stability limit of the time step, s.
+    #[getter]
+    fn dt_limit(&self) -> f64 {
+        self.inner.model.dt_limit
+    }
+
+    /// The stiffest term, which sets the stability limit.
+    #[getter]
+    fn dt_cause(&self) -> String {
+        self.inner.model.dt_cause.clone()
+    }
+
+    /// Names of the compiled stages, in the order they run.
+    #[getter]
+    fn stages(&self) -> Vec<&'static str> {
+        self.inner.model.stages.iter().map(|s| s.name()).collect()
+    }
+
+    /// Number of belt nodes (= elements).
+    #[getter]
+    fn nodes(&self) -> usize {
+        self.inner.model.nodes
+    }
+
+    /// Simulated time, s.
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.state.time
+    }
+
+    /// Steps taken.
+    #[getter]
+    fn step_count(&self) -> u64 {
+        self.inner.state.step
+    }
+
+    /// Length of the initial belt path, m.
+    #[getter]
+    fn path_length(&self) -> f64 {
+        self.inner.model.path.length
+    }
+
+    /// Wrap angle on each pulley on the initial path, rad.
+    #[getter]
+    fn wrap_angles(&self) -> Vec<f64> {
+        self.inner.model.path.wrap_angles.clone()
+    }
+
+    /// Element rest lengths, m.
+    #[getter]
+    fn rest_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.model.rest_length)
+    }
+
+    /// Node masses, kg.
+    #[getter]
+    fn node_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.model.mass)
+    }
+
+    /// Whether the last run stopped on Ctrl-C.
+    #[getter]
+    fn interrupted(&self) -> bool {
+        self.interrupted
+    }
+
+    /// Relax to static equilibrium. Returns a dict with steps, residual, converged, resets.
+    #[pyo3(signature = (method="fire", friction=false, tolerance=1e-7, max_steps=5_000_000))]
+    fn stabilise<'py>(
+        &mut self,
+        py: Python<'py>,
+        method: &str,
+        friction: bool,
+        tolerance: f64,
+        max_steps: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let method = match method {
+            "fire" => Relaxation::Fire,
+            "kinetic" => Relaxation::KineticEnergy,
+            other => {
+                return Err(BeltrsError::new_err(format!(
+                    "method = {other:?}: unknown relaxation (known: \"fire\", \"kinetic\")"
+                )))
+            }
+        };
+        let options = StabiliseOptions {
+            method,
+            friction,
+            tolerance,
+            max_steps,
+        };
+        let sim = &mut self.inner;
+        let report = guarded(|| py.detach(|| sim.stabilise(&options)).map_err(to_py))?;
+        let d = PyDict::new(py);
+        d.set_item("steps", report.steps)?;
+        d.set_item("residual", report.residual)?;
+        d.set_item("converged", report.converged)?;
+        d.set_item("resets", report.resets)?;
+        Ok(d)
+    }
+
+    /// Advance `steps` steps, sampling every `every` steps into a fresh recording. Checks
+    /// for Ctrl-C every `chunk` steps; on Ctrl-C stops and keeps what was recorded. A
+    /// blow-up raises DivergenceError and keeps the recording.
+    #[pyo3(signature = (steps, every=1, tension=true, node_position=true, node_velocity=true, chunk=4096))]
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &mut self,
+        py: Python<'_>,
+        steps: u64,
+        every: u64,
+        tension: bool,
+        node_position: bool,
+        node_velocity: bool,
+        chunk: u64,
+    ) -> PyResult<()> {
+        if every == 0 {
+            return Err(SceneError::new_err("every = 0: must be ≥ 1"));
+        }
+        let channels = Channels {
+            tension,
+            node_position,
+            node_velocity,
+        };
+        self.interrupted = false;
+        let chunk = chunk.max(1);
+        guarded(|| {
+            self.inner.begin_recording(channels, every);
+            let mut done = 0;
+            while done < steps {
+                let n = chunk.min(steps - done);
+                let sim = &mut self.inner;
+                py.detach(|| sim.advance(n)).map_err(to_py)?;
+                done += n;
+                if py.check_signals().is_err() {
+                    self.interrupted = true;
+                    return Ok(());
+                }
+            }
+            self.inner.end_recording();
+            Ok(())
+        })
+    }
+
+    /// Advance `steps` steps without recording.
+    fn step(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
+        let sim = &mut self.inner;
+        guarded(|| py.detach(|| sim.step(steps)).map_err(to_py))
+    }
+
+    /// The current recording as a dict of NumPy arrays (copies).
+    fn recording<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        recording_dict(py, &self.inner.recording)
+    }
+
+    /// Bytes held by the recording buffers.
+    fn recording_bytes(&self) -> usize {
+        self.inner.recording.bytes()
+    }
+
+    /// The current state as a dict of NumPy arrays (copies).
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.inner.state;
+        let d = PyDict::new(py);
+        let n = s.position.len();
+        let flat =
+            |v: &[nalgebra::Vector2<f64>]| v.iter().flat_map(|p| [p.x, p.y]).collect::<Vec<f64>>();
+        d.set_item("time", s.time)?;
+        d.set_item("step", s.step)?;
+        d.set_item("node_position", array(py, &flat(&s.position), &[n, 2])?)?;
+        d.set_item(
+            "node_velocity_half_step",
+            array(py, &flat(&s.velocity), &[n, 2])?,
+        )?;
+        d.set_item("pulley_speed", PyArray1::from_slice(py, &s.pulley_omega))?;
+        d.set_item("pulley_angle", PyArray1::from_slice(py, &s.pulley_angle))?;
+        d.set_item("takeup_travel", PyArray1::from_slice(py, &s.takeup_travel))?;
+        d.set_item("takeup_speed", PyArray1::from_slice(py, &s.takeup_speed))?;
+        d.set_item("idler_speed", PyArray1::from_slice(py, &s.idler_omega))?;
+        d.set_item("drive_work", s.drive_work)?;
+        Ok(d)
+    }
+
+    /// Element tensions at the current state, N.
+    fn tensions<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let sim = &mut self.inner;
+        let t = guarded(|| Ok(sim.tensions().to_vec()))?;
+        Ok(PyArray1::from_vec(py, t))
+    }
+
+    /// Net force on each node at the current state, N, shape (n_nodes, 2).
+    fn forces<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let sim = &mut self.inner;
+        let f: Vec<f64> = guarded(|| Ok(sim.forces().iter().flat_map(|p| [p.x, p.y]).collect()))?;
+        let n = f.len() / 2;
+        array(py, &f, &[n, 2])
+    }
+
+    /// Energies of the current state, J.
+    fn energies<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let sim = &mut self.inner;
+        let e = guarded(|| Ok(sim.current_energies()))?;
+        let d = PyDict::new(py);
+        let values = [
+            e.kinetic,
+            e.strain,
+            e.bending,
+            e.gravity,
+            e.contact,
+            e.total(),
+            e.drive_work,
+        ];
+        for (k, v) in ENERGY_COLUMNS.iter().zip(values) {
+            d.set_item(*k, v)?;
+        }
+        Ok(d)
+    }
+
+    /// Turn per-stage timing on (zeroed) or off.
+    fn set_profiling(&mut self, on: bool) {
+        self.inner.set_profiling(on);
+    }
+
+    /// Seconds spent in each stage since profiling was turned on (empty when off).
+    fn profile<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        if let Some(p) = &self.inner.profile {
+            for (s, t) in self.inner.model.stages.iter().zip(p) {
+                d.set_item(s.name(), *t)?;
+            }
+        }
+        Ok(d)
+    }
+}
+
+fn recording_dict<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let t = r.len();
+    let (n, p, q) = (r.nodes, r.pulleys, r.idlers);
+    d.set_item("time", PyArray1::from_slice(py, &r.time))?;
+    if r.channels.tension {
+        d.set_item("tension", array(py, &r.tension, &[t, n])?)?;
+    }
+    if r.channels.node_position {
+        d.set_item("node_position", array(py, &r.node_position, &[t, n, 2])?)?;
+    }
+    if r.channels.node_velocity {
+        d.set_item("node_velocity", array(py, &r.node_velocity, &[t, n, 2])?)?;
+    }
+    d.set_item(
+        "pulley_position",
+        array(py, &r.pulley_position, &[t, p, 2])?,
+    )?;
+    d.set_item("takeup_travel", array(py, &r.takeup_travel, &[t, p])?)?;
+    d.set_item("pulley_speed", array(py, &r.pulley_speed, &[t, p])?)?;
+    d.set_item("friction_torque", array(py, &r.friction_torque, &[t, p])?)?;
+    d.set_item("drive_torque", array(py, &r.drive_torque, &[t, p])?)?;
+    d.set_item("brake_torque", array(py, &r.brake_torque, &[t, p])?)?;
+    d.set_item("pulley_force", array(py, &r.pulley_force, &[t, p, 2])?)?;
+    d.set_item("normal_force", array(py, &r.normal_force, &[t, p])?)?;
+    d.set_item("friction_force", array(py, &r.friction_force, &[t, p])?)?;
+    d.set_item("contact_nodes", array(py, &r.contact_nodes, &[t, p])?)?;
+    d.set_item("slipping_nodes", array(py, &r.slipping_nodes, &[t, p])?)?;
+    d.set_item("idler_force", array(py, &r.idler_force, &[t, q])?)?;
+    d.set_item("idler_speed", array(py, &r.idler_speed, &[t, q])?)?;
+    d.set_item("energy", array(py, &r.energy, &[t, ENERGY_COLUMNS.len()])?)?;
+    d.set_item("energy_columns", ENERGY_COLUMNS.to_vec())?;
+    Ok(d)
+}
+
+/// The compiled extension module.
+#[pymodule]
+fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PySimulation>()?;
+    m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
+    m.add("SceneError", m.py().get_type::<SceneError>())?;
+    m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;
+    m.add("DivergenceError", m.py().get_type::<DivergenceError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,599 @@
+//! Plain data describing a scene: belt, pulleys, idlers and solver settings.
+//!
+//! Everything here is SI: metres, kilograms, seconds, newtons, radians. Each parameter
+//! struct implements [`Default`] with the documented defaults, so a scene can be built as
+//! `PulleySpec { radius: 0.5, ..Default::default() }`. Nothing here is checked until
+//! [`Scene::validate`] runs (it is called by [`crate::model::Model::compile`]).
+
+use crate::error::{BeltError, BeltResult};
+
+/// Which discrete belt model to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Formulation {
+    /// Hustrulid (1993): lumped node masses joined by Kelvin-Voigt axial elements and
+    /// rotational bending springs (thesis eq. 4.1–4.60).
+    #[default]
+    NodeKelvinVoigt,
+}
+
+impl Formulation {
+    /// Name used in scene files and in Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::NodeKelvinVoigt => "node_kelvin_voigt",
+        }
+    }
+}
+
+/// Belt properties.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeltParams {
+    /// Discrete belt model. Default: [`Formulation::NodeKelvinVoigt`].
+    pub formulation: Formulation,
+    /// Axial stiffness EA, N. Default 7.62e6 (case H: E = 300 MPa, 1 m × 0.0254 m).
+    pub axial_stiffness: f64,
+    /// Mass per unit unstretched length ρA, kg/m. Default 100.
+    pub mass_per_length: f64,
+    /// Bending stiffness EI, N·m². Zero disables the bending stage. Default 0.
+    pub bending_stiffness: f64,
+    /// Axial damping as a fraction of the critical damping of one element (thesis eq. 4.3),
+    /// dimensionless. Zero disables the damping term. Default 0.
+    pub damping_ratio: f64,
+    /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
+    /// the belt is placed unstretched. Default `None`.
+    pub length: Option<f64>,
+    /// Number of elements (= number of nodes, the loop is closed). `None`: the fewest
+    /// elements whose unstretched length is at most the arc of `max_element_angle` on the
+    /// smallest pulley (thesis §6.1). Default `None`.
+    pub elements: Option<usize>,
+    /// Largest arc angle an element may span on the smallest pulley when `elements` is
+    /// `None`, rad. Default π/6 (30°, as in the thesis).
+    pub max_element_angle: f64,
+    /// If true, elements carry no compression (a slack element has zero force; its bending
+    /// springs still act). If false the axial spring is linear in compression too, as in the
+    /// thesis. Default false.
+    pub tension_only: bool,
+}
+
+impl Default for BeltParams {
+    fn default() -> Self {
+        BeltParams {
+            formulation: Formulation::NodeKelvinVoigt,
+            axial_stiffness: 7.62e6,
+            mass_per_length: 100.0,
+            bending_stiffness: 0.0,
+            damping_ratio: 0.0,
+            length: None,
+            elements: None,
+            max_element_angle: std::f64::consts::PI / 6.0,
+            tension_only: false,
+        }
+    }
+}
+
+/// Sense in which the belt wraps a pulley as it travels along the loop in node order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Wrap {
+    /// The belt goes counter-clockwise around the pulley (pulley on the belt's left).
+    #[default]
+    CounterClockwise,
+    /// The belt goes clockwise around the pulley (pulley on the belt's right).
+    Clockwise,
+}
+
+impl Wrap {
+    /// +1 for counter-clockwise, −1 for clockwise.
+    pub fn sign(self) -> f64 {
+        match self {
+            Wrap::CounterClockwise => 1.0,
+            Wrap::Clockwise => -1.0,
+        }
+    }
+}
+
+/// Friction between the belt and a pulley or idler.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum FrictionModel {
+    /// Frictionless contact: no friction stage is compiled for this body.
+    #[default]
+    None,
+    /// Stick-force friction (Taylor & Preece, extended by Hustrulid, thesis eq. 4.76–4.94).
+    StickForce {
+        /// Static coefficient µs, dimensionless, ≥ µk.
+        static_coefficient: f64,
+        /// Kinetic (dynamic) coefficient µk, dimensionless, ≥ 0.
+        kinetic_coefficient: f64,
+    },
+}
+
+impl FrictionModel {
+    /// True if this model adds no friction force at all.
+    pub fn is_none(&self) -> bool {
+        match *self {
+            FrictionModel::None => true,
+            FrictionModel::StickForce {
+                static_coefficient, ..
+            } => static_coefficient == 0.0,
+        }
+    }
+}
+
+/// A function of time given as a piecewise-linear table, held constant beyond its ends.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    /// Abscissae, strictly increasing (s for time tables, rad/s for speed tables).
+    pub x: Vec<f64>,
+    /// Ordinates, same length as `x`.
+    pub y: Vec<f64>,
+}
+
+impl Table {
+    /// A constant function.
+    pub fn constant(value: f64) -> Self {
+        Table {
+            x: vec![0.0],
+            y: vec![value],
+        }
+    }
+
+    /// Piecewise-linear interpolation, constant extrapolation. An empty table is 0.
+    pub fn eval(&self, x: f64) -> f64 {
+        let n = self.x.len();
+        if n == 0 {
+            return 0.0;
+        }
+        if x <= self.x[0] {
+            return self.y[0];
+        }
+        if x >= self.x[n - 1] {
+            return self.y[n - 1];
+        }
+        // Tables are short (a handful of points): a linear scan beats a binary search.
+        let mut i = 1;
+        while self.x[i] < x {
+            i += 1;
+        }
+        let (x0, x1, y0, y1) = (self.x[i - 1], self.x[i], self.y[i - 1], self.y[i]);
+        y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    }
+
+    fn validate(&self, field: &str, non_negative: bool) -> BeltResult<()> {
+        if self.x.len() != self.y.len() {
+            return Err(BeltError::invalid(
+                field,
+                format!("{} abscissae, {} ordinates", self.x.len(), self.y.len()),
+                "a table needs as many values as abscissae",
+            ));
+        }
+        if self.x.is_empty() {
+            return Err(BeltError::invalid(
+                field,
+                "[]",
+                "a table needs at least one point",
+            ));
+        }
+        for (i, (&x, &y)) in self.x.iter().zip(&self.y).enumerate() {
+            check_finite(&format!("{field}.x[{i}]"), x)?;
+            check_finite(&format!("{field}.y[{i}]"), y)?;
+            if non_negative && y < 0.0 {
+                return Err(BeltError::invalid(
+                    format!("{field}.y[{i}]"),
+                    y,
+                    "must be ≥ 0",
+                ));
+            }
+            if i > 0 && x <= self.x[i - 1] {
+                return Err(BeltError::invalid(
+                    format!("{field}.x[{i}]"),
+                    x,
+                    format!(
+                        "abscissae must increase strictly (previous {})",
+                        self.x[i - 1]
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Drive torque applied to a pulley (thesis eq. 4.66): T(t, ω) = f(t)·g(ω) − b·ω.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriveSpec {
+    /// f(t): torque against time, N·m, positive counter-clockwise. Default: 0.
+    pub torque: Table,
+    /// g(ω): dimensionless factor against pulley speed ω (rad/s), e.g. a motor curve
+    /// normalised to 1 at stall. Empty: g = 1. Default empty.
+    pub speed_factor: Table,
+    /// b: viscous torque coefficient, N·m·s/rad (a load torque proportional to speed).
+    /// Default 0.
+    pub viscous: f64,
+    /// I_D: inertia of motor, gearbox and coupling added to the pulley, kg·m². Default 0.
+    pub inertia: f64,
+}
+
+impl Default for DriveSpec {
+    fn default() -> Self {
+        DriveSpec {
+            torque: Table::constant(0.0),
+            speed_factor: Table::default(),
+            viscous: 0.0,
+            inertia: 0.0,
+        }
+    }
+}
+
+impl DriveSpec {
+    /// Drive torque at time `t` (s) and pulley speed `omega` (rad/s), N·m.
+    #[inline]
+    pub fn torque_at(&self, t: f64, omega: f64) -> f64 {
+        let factor = if self.speed_factor.x.is_empty() {
+            1.0
+        } else {
+            self.speed_factor.eval(omega)
+        };
+        self.torque.eval(t) * factor - self.viscous * omega
+    }
+}
+
+/// A brake: a Coulomb torque that opposes rotation and holds the pulley at rest up to its
+/// capacity.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct BrakeSpec {
+    /// Holding/braking torque capacity against time, N·m, ≥ 0.
+    pub capacity: Table,
+}
+
+/// A gravity takeup: the pulley translates on a straight line, pulled by a counterweight
+/// (thesis eq. 4.63).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TakeupSpec {
+    /// Unit vector along which the counterweight pulls. Default (0, −1): a vertical gravity
+    /// takeup hanging in the loop.
+    pub direction: [f64; 2],
+    /// Counterweight mass, kg. It moves with the pulley. Default 0.
+    pub counterweight: f64,
+    /// Lowest travel along `direction` from the initial position, m (a hard stop; `-inf`
+    /// for none). Default −∞.
+    pub travel_min: f64,
+    /// Highest travel along `direction` from the initial position, m. Default +∞.
+    pub travel_max: f64,
+}
+
+impl Default for TakeupSpec {
+    fn default() -> Self {
+        TakeupSpec {
+            direction: [0.0, -1.0],
+            counterweight: 0.0,
+            travel_min: f64::NEG_INFINITY,
+            travel_max: f64::INFINITY,
+        }
+    }
+}
+
+/// A pulley: fixed centre and free rotation, optionally a gravity takeup, a drive and a brake.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PulleySpec {
+    /// Name used in messages and results. Default "" (messages then use the index).
+    pub name: String,
+    /// Centre, m.
+    pub center: [f64; 2],
+    /// Radius to the belt centre line, m. Default 0.5.
+    pub radius: f64,
+    /// Pulley mass, kg. Default 100.
+    pub mass: f64,
+    /// Polar moment of inertia, kg·m². `None`: mass·radius² (as the thesis code). Default `None`.
+    pub inertia: Option<f64>,
+    /// Sense of the wrap. Default counter-clockwise.
+    pub wrap: Wrap,
+    /// Belt–pulley friction. Default frictionless.
+    pub friction: FrictionModel,
+    /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Default 1e9.
+    pub contact_stiffness: f64,
+    /// Normal contact damping, N·s/m (not in the thesis). Default 0.
+    pub contact_damping: f64,
+    /// Gravity takeup, if this pulley translates. Default `None`.
+    pub takeup: Option<TakeupSpec>,
+    /// Drive torque, if any. Default `None`.
+    pub drive: Option<DriveSpec>,
+    /// Brake, if any. Default `None`.
+    pub brake: Option<BrakeSpec>,
+}
+
+impl Default for PulleySpec {
+    fn default() -> Self {
+        PulleySpec {
+            name: String::new(),
+            center: [0.0, 0.0],
+            radius: 0.5,
+            mass: 100.0,
+            inertia: None,
+            wrap: Wrap::CounterClockwise,
+            friction: FrictionModel::None,
+            contact_stiffness: 1e9,
+            contact_damping: 0.0,
+            takeup: None,
+            drive: None,
+            brake: None,
+        }
+    }
+}
+
+impl PulleySpec {
+    /// Polar moment of inertia, kg·m², with the default applied.
+    pub fn polar_inertia(&self) -> f64 {
+        self.inertia
+            .unwrap_or(self.mass * self.radius * self.radius)
+    }
+}
+
+/// An idler roll in contact with the belt centre line (thesis eq. 4.95–4.117).
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdlerSpec {
+    /// Centre, m.
+    pub center: [f64; 2],
+    /// Radius, m. Default 0.0635 (5 in roll).
+    pub radius: f64,
+    /// Polar moment of inertia of the rotating parts, kg·m². Default 0.01.
+    pub inertia: f64,
+    /// Penalty stiffness, N/m of penetration. Default 1e8.
+    pub contact_stiffness: f64,
+    /// Normal contact damping, N·s/m. Default 0.
+    pub contact_damping: f64,
+    /// Belt–idler friction. Default frictionless (the roll then never turns).
+    pub friction: FrictionModel,
+}
+
+impl Default for IdlerSpec {
+    fn default() -> Self {
+        IdlerSpec {
+            center: [0.0, 0.0],
+            radius: 0.0635,
+            inertia: 0.01,
+            contact_stiffness: 1e8,
+            contact_damping: 0.0,
+            friction: FrictionModel::None,
+        }
+    }
+}
+
+/// Time-stepping settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverParams {
+    /// Fixed time step, s. `None`: `time_step_fraction` × the estimated stability limit.
+    /// A value above the limit is refused. Default `None`.
+    pub time_step: Option<f64>,
+    /// Fraction of the stability limit used when `time_step` is `None`, in (0, 1].
+    /// Default 0.5 (the thesis ran at half its limit).
+    pub time_step_fraction: f64,
+}
+
+impl Default for SolverParams {
+    fn default() -> Self {
+        SolverParams {
+            time_step: None,
+            time_step_fraction: 0.5,
+        }
+    }
+}
+
+/// A whole scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Belt properties.
+    pub belt: BeltParams,
+    /// Pulleys in the order the belt meets them; the loop closes from the last to the first.
+    pub pulleys: Vec<PulleySpec>,
+    /// Idlers (in any order).
+    pub idlers: Vec<IdlerSpec>,
+    /// Gravitational acceleration, m/s², acting in −y. Zero disables the gravity stage.
+    /// Default 9.81.
+    pub gravity: f64,
+    /// Time-stepping settings.
+    pub solver: SolverParams,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene {
+            belt: BeltParams::default(),
+            pulleys: Vec::new(),
+            idlers: Vec::new(),
+            gravity: 9.81,
+            solver: SolverParams::default(),
+        }
+    }
+}
+
+/// Error unless `value` is finite.
+pub(crate) fn check_finite(field: &str, value: f64) -> BeltResult<()> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(BeltError::invalid(field, value, "must be a finite number"))
+    }
+}
+
+fn check_positive(field: &str, value: f64) -> BeltResult<()> {
+    check_finite(field, value)?;
+    if value > 0.0 {
+        Ok(())
+    } else {
+        Err(BeltError::invalid(field, value, "must be > 0"))
+    }
+}
+
+fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
+    check_finite(field, value)?;
+    if value >= 0.0 {
+        Ok(())
+    } else {
+        Err(BeltError::invalid(field, value, "must be ≥ 0"))
+    }
+}
+
+fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
+    if let FrictionModel::StickForce {
+        static_coefficient,
+        kinetic_coefficient,
+    } = *model
+    {
+        check_non_negative(&format!("{field}.static_coefficient"), static_coefficient)?;
+        check_non_negative(&format!("{field}.kinetic_coefficient"), kinetic_coefficient)?;
+        if kinetic_coefficient > static_coefficient {
+            return Err(BeltError::invalid(
+                format!("{field}.kinetic_coefficient"),
+                kinetic_coefficient,
+                format!("must not exceed the static coefficient {static_coefficient}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Check every parameter on its own and the pairwise rules that need no geometry
+    /// (overlaps). Path-dependent rules (closure, belt length, element length) are checked
+    /// when the path is built in [`crate::model::Model::compile`].
+    pub fn validate(&self) -> BeltResult<()> {
+        check_non_negative("gravity", self.gravity)?;
+        let b = &self.belt;
+        check_positive("belt.axial_stiffness", b.axial_stiffness)?;
+        check_positive("belt.mass_per_length", b.mass_per_length)?;
+        check_non_negative("belt.bending_stiffness", b.bending_stiffness)?;
+        check_non_negative("belt.damping_ratio", b.damping_ratio)?;
+        if let Some(length) = b.length {
+            check_positive("belt.length", length)?;
+        }
+        if let Some(n) = b.elements {
+            if n < 3 {
+                return Err(BeltError::invalid(
+                    "belt.elements",
+                    n,
+                    "a closed belt needs at least 3 elements",
+                ));
+            }
+        }
+        check_positive("belt.max_element_angle", b.max_element_angle)?;
+        if b.max_element_angle > std::f64::consts::FRAC_PI_3 {
+            return Err(BeltError::invalid(
+                "belt.max_element_angle",
+                b.max_element_angle,
+                "must be at most π/3 rad (60°): a longer element cuts through the pulley",
+            ));
+        }
+        let s = &self.solver;
+        if let Some(dt) = s.time_step {
+            check_positive("solver.time_step", dt)?;
+        }
+        check_positive("solver.time_step_fraction", s.time_step_fraction)?;
+        if s.time_step_fraction > 1.0 {
+            return Err(BeltError::invalid(
+                "solver.time_step_fraction",
+                s.time_step_fraction,
+                "must be in (0, 1]: 1 is the stability limit",
+            ));
+        }
+
+        if self.pulleys.len() < 2 {
+            return Err(BeltError::invalid(
+                "pulleys",
+                format!("{} pulley(s)", self.pulleys.len()),
+                "a closed belt path needs at least 2 pulleys",
+            ));
+        }
+        for (i, p) in self.pulleys.iter().enumerate() {
+            let f = format!("pulleys[{i}]");
+            check_finite(&format!("{f}.center[0]"), p.center[0])?;
+            check_finite(&format!("{f}.center[1]"), p.center[1])?;
+            check_positive(&format!("{f}.radius"), p.radius)?;
+            check_positive(&format!("{f}.mass"), p.mass)?;
+            if let Some(inertia) = p.inertia {
+                check_positive(&format!("{f}.inertia"), inertia)?;
+            }
+            check_positive(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
+            check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
+            check_friction(&format!("{f}.friction"), &p.friction)?;
+            if let Some(t) = &p.takeup {
+                check_finite(&format!("{f}.takeup.direction[0]"), t.direction[0])?;
+                check_finite(&format!("{f}.takeup.direction[1]"), t.direction[1])?;
+                let norm = t.direction[0].hypot(t.direction[1]);
+                if (norm - 1.0).abs() > 1e-9 {
+                    return Err(BeltError::invalid(
+                        format!("{f}.takeup.direction"),
+                        format!("[{}, {}]", t.direction[0], t.direction[1]),
+                        "must be a unit vector",
+                    ));
+                }
+                check_non_negative(&format!("{f}.takeup.counterweight"), t.counterweight)?;
+                if t.travel_min.is_nan() || t.travel_min > 0.0 {
+                    return Err(BeltError::invalid(
+                        format!("{f}.takeup.travel_min"),
+                        t.travel_min,
+                        "must be ≤ 0 (travel is measured from the initial position)",
+                    ));
+                }
+                if t.travel_max.is_nan() || t.travel_max < 0.0 {
+                    return Err(BeltError::invalid(
+                        format!("{f}.takeup.travel_max"),
+                        t.travel_max,
+                        "must be ≥ 0 (travel is measured from the initial position)",
+                    ));
+                }
+            }
+            if let Some(d) = &p.drive {
+                d.torque.validate(&format!("{f}.drive.torque"), false)?;
+                if !d.speed_factor.x.is_empty() || !d.speed_factor.y.is_empty() {
+                    d.speed_factor
+                        .validate(&format!("{f}.drive.speed_factor"), false)?;
+                }
+                check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
+                check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
+            }
+            if let Some(br) = &p.brake {
+                br.capacity.validate(&format!("{f}.brake.capacity"), true)?;
+            }
+        }
+        for (i, d) in self.idlers.iter().enumerate() {
+            let f = format!("idlers[{i}]");
+            check_finite(&format!("{f}.center[0]"), d.center[0])?;
+            check_finite(&format!("{f}.center[1]"), d.center[1])?;
+            check_positive(&format!("{f}.radius"), d.radius)?;
+            check_positive(&format!("{f}.inertia"), d.inertia)?;
+            check_positive(&format!("{f}.contact_stiffness"), d.contact_stiffness)?;
+            check_non_negative(&format!("{f}.contact_damping"), d.contact_damping)?;
+            check_friction(&format!("{f}.friction"), &d.friction)?;
+        }
+        // Bodies must not overlap (thesis §4.3: pulleys and idlers never touch each other).
+        let circles: Vec<(String, [f64; 2], f64)> = self
+            .pulleys
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (format!("pulleys[{i}]"), p.center, p.radius))
+            .chain(
+                self.idlers
+                    .iter()
+                    .enumerate()
+                    .map(|(i, d)| (format!("idlers[{i}]"), d.center, d.radius)),
+            )
+            .collect();
+        for a in 0..circles.len() {
+            for b in (a + 1)..circles.len() {
+                let (na, ca, ra) = &circles[a];
+                let (nb, cb, rb) = &circles[b];
+                let dist = (ca[0] - cb[0]).hypot(ca[1] - cb[1]);
+                if dist < ra + rb {
+                    return Err(BeltError::invalid(
+                        format!("{nb}.center"),
+                        format!("[{}, {}]", cb[0], cb[1]),
+                        format!(
+                            "overlaps {na} (centres {dist:.6} m apart, radii sum {:.6} m)",
+                            ra + rb
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}

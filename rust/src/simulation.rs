@@ -1,0 +1,955 @@
+//! The stepper: runs the compiled stages on (model, state), integrates with central
+//! differences (thesis eq. 4.58–4.60), records results and relaxes to static equilibrium.
+
+use crate::contact::{self, IdlerBody, IdlerContact, PulleyBody, PulleyContacts};
+use crate::error::{BeltError, BeltResult};
+use crate::forces;
+use crate::friction::{self, FrictionIdler, FrictionOutcome, FrictionPulley, StickScratch};
+use crate::model::{Model, Stage};
+use crate::record::{Channels, Energies, Recording};
+use crate::scene::{FrictionModel, Scene};
+use crate::state::State;
+use nalgebra::Vector2;
+use std::time::Instant;
+
+type V2 = Vector2<f64>;
+
+/// Which optional effects the force evaluation applies (stabilisation turns some off).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Effects {
+    /// Belt friction on pulleys and idlers.
+    pub friction: bool,
+    /// Drive torques and brakes.
+    pub drives: bool,
+}
+
+impl Effects {
+    /// Everything the model has.
+    pub const ALL: Effects = Effects {
+        friction: true,
+        drives: true,
+    };
+}
+
+/// Per-step working buffers owned by the stepper (never part of the state).
+#[derive(Debug, Clone)]
+pub struct Scratch {
+    /// Net force on each node, N.
+    pub force: Vec<V2>,
+    /// Element tension, N.
+    pub tension: Vec<f64>,
+    /// Contacts of each pulley.
+    pub contacts: Vec<PulleyContacts>,
+    /// Friction scratch of each pulley.
+    pub stick: Vec<StickScratch>,
+    /// Resultant belt force on each pulley (contact + friction), N.
+    pub pulley_force: Vec<V2>,
+    /// Belt friction on each pulley.
+    pub friction: Vec<FrictionOutcome>,
+    /// Drive torque on each pulley, N·m.
+    pub drive_torque: Vec<f64>,
+    /// Brake torque on each pulley, N·m.
+    pub brake_torque: Vec<f64>,
+    /// Contact of each idler.
+    pub idler_contacts: Vec<IdlerContact>,
+    /// Friction torque on each idler, N·m.
+    pub idler_torque: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(model: &Model) -> Scratch {
+        let (n, p, q) = (model.nodes, model.pulleys.len(), model.idlers.len());
+        Scratch {
+            force: vec![V2::zeros(); n],
+            tension: vec![0.0; n],
+            contacts: vec![PulleyContacts::default(); p],
+            stick: vec![StickScratch::default(); p],
+            pulley_force: vec![V2::zeros(); p],
+            friction: vec![FrictionOutcome::default(); p],
+            drive_torque: vec![0.0; p],
+            brake_torque: vec![0.0; p],
+            idler_contacts: vec![IdlerContact::default(); q],
+            idler_torque: vec![0.0; q],
+        }
+    }
+}
+
+/// Mass arrays used for inertia: physical for dynamics, scaled for fast relaxation.
+#[derive(Debug, Clone)]
+struct Inertia {
+    mass: Vec<f64>,
+    inv_mass: Vec<f64>,
+    takeup_mass: Vec<f64>,
+}
+
+impl Inertia {
+    fn physical(model: &Model) -> Inertia {
+        Inertia {
+            mass: model.mass.clone(),
+            inv_mass: model.inv_mass.clone(),
+            takeup_mass: model
+                .pulleys
+                .iter()
+                .map(|p| p.takeup.as_ref().map_or(f64::INFINITY, |t| t.moving_mass))
+                .collect(),
+        }
+    }
+
+    /// Fictitious masses m̃ = K·Δt² that put every degree of freedom at the same distance
+    /// from its stability limit (ωΔt ≤ 1), as in Underwood's dynamic relaxation.
+    fn scaled(model: &Model) -> Inertia {
+        let dt2 = model.dt * model.dt;
+        let mass: Vec<f64> = model.node_stiffness_bound.iter().map(|k| k * dt2).collect();
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let takeup_mass = model
+            .pulleys
+            .iter()
+            .enumerate()
+            .map(|(j, p)| match p.takeup {
+                Some(_) => model.takeup_stiffness_bound[j] * dt2,
+                None => f64::INFINITY,
+            })
+            .collect();
+        Inertia {
+            mass,
+            inv_mass,
+            takeup_mass,
+        }
+    }
+}
+
+/// Static relaxation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Relaxation {
+    /// Kinetic-energy damping (thesis §6.2): velocities are zeroed at kinetic-energy
+    /// peaks. Each degree of freedom is reset at its own peak (the thesis resets all at the
+    /// peak of the total, which stalls with stiff contact; see `docs/statics.md`).
+    #[default]
+    KineticEnergy,
+    /// FIRE (Bitzek et al. 2006): inertial relaxation that mixes the velocity towards the
+    /// force and restarts when the power turns negative: same equilibrium, ~100× fewer steps.
+    Fire,
+}
+
+/// Options of [`Simulation::stabilise`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabiliseOptions {
+    /// Method. Default [`Relaxation::Fire`].
+    pub method: Relaxation,
+    /// Keep belt friction on while relaxing (thesis §6.3 / fig. 6.6 locks in lower
+    /// tensions). Default false.
+    pub friction: bool,
+    /// Converged when the largest out-of-balance force on any node or takeup is below this
+    /// fraction of the largest element tension. Default 1e-7.
+    pub tolerance: f64,
+    /// Give up after this many steps. Default 5·10⁶.
+    pub max_steps: u64,
+}
+
+impl Default for StabiliseOptions {
+    fn default() -> Self {
+        StabiliseOptions {
+            method: Relaxation::Fire,
+            friction: false,
+            tolerance: 1e-7,
+            max_steps: 5_000_000,
+        }
+    }
+}
+
+/// What [`Simulation::stabilise`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabiliseReport {
+    /// Relaxation steps taken.
+    pub steps: u64,
+    /// Final out-of-balance force relative to the largest tension.
+    pub residual: f64,
+    /// Whether the tolerance was met.
+    pub converged: bool,
+    /// Number of times the velocities were zeroed.
+    pub resets: u64,
+}
+
+/// Model, state, scratch buffers and the current recording.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// The compiled model (read-only).
+    pub model: Model,
+    /// The mutable state.
+    pub state: State,
+    scratch: Scratch,
+    inertia: Inertia,
+    /// Results of the current or last run.
+    pub recording: Recording,
+    record_every: u64,
+    record_counter: u64,
+    /// Per-stage wall time, s (same order as `model.stages`), when profiling is on.
+    pub profile: Option<Vec<f64>>,
+}
+
+impl Simulation {
+    /// Compile a scene and place the belt at rest on its initial path.
+    pub fn new(scene: &Scene) -> BeltResult<Simulation> {
+        let model = Model::compile(scene)?;
+        let state = State::initial(&model);
+        Ok(Self::from_parts(model, state))
+    }
+
+    fn from_parts(model: Model, state: State) -> Simulation {
+        let scratch = Scratch::new(&model);
+        let inertia = Inertia::physical(&model);
+        let recording = Recording::new(
+            Channels::default(),
+            model.nodes,
+            model.pulleys.len(),
+            model.idlers.len(),
+        );
+        Simulation {
+            model,
+            state,
+            scratch,
+            inertia,
+            recording,
+            record_every: 1,
+            record_counter: 0,
+            profile: None,
+        }
+    }
+
+    /// Replace the scene (e.g. a new counterweight or drive torque) and keep the state.
+    /// The belt discretisation and the set of pulleys and idlers must not change.
+    pub fn set_scene(&mut self, scene: &Scene) -> BeltResult<()> {
+        let model = Model::compile(scene)?;
+        if model.nodes != self.model.nodes
+            || model.pulleys.len() != self.model.pulleys.len()
+            || model.idlers.len() != self.model.idlers.len()
+        {
+            return Err(BeltError::Usage(format!(
+                "the new scene has {} nodes, {} pulleys and {} idlers, the running one {}, {} and {}: only parameters may change during a run",
+                model.nodes,
+                model.pulleys.len(),
+                model.idlers.len(),
+                self.model.nodes,
+                self.model.pulleys.len(),
+                self.model.idlers.len()
+            )));
+        }
+        for (j, (a, b)) in model.pulleys.iter().zip(&self.model.pulleys).enumerate() {
+            if a.center != b.center
+                || a.takeup.as_ref().map(|t| t.direction) != b.takeup.as_ref().map(|t| t.direction)
+            {
+                return Err(BeltError::Usage(format!(
+                    "pulleys[{j}]: the centre and takeup line may not change during a run"
+                )));
+            }
+        }
+        let profile = self.profile.as_ref().map(|_| vec![0.0; model.stages.len()]);
+        self.scratch = Scratch::new(&model);
+        self.inertia = Inertia::physical(&model);
+        self.model = model;
+        self.profile = profile;
+        Ok(())
+    }
+
+    /// Turn per-stage timing on (zeroing it) or off.
+    pub fn set_profiling(&mut self, on: bool) {
+        self.profile = if on {
+            Some(vec![0.0; self.model.stages.len()])
+        } else {
+            None
+        };
+    }
+
+    /// Evaluate all forces at the current state (thesis eq. 4.57).
+    fn evaluate(&mut self, effects: Effects) {
+        let m = &self.model;
+        let s = &mut self.state;
+        let sc = &mut self.scratch;
+        let mass = &self.inertia.mass;
+        let dt = m.dt;
+        sc.force.iter_mut().for_each(|f| *f = V2::zeros());
+        sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
+        sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
+        sc.friction
+            .iter_mut()
+            .for_each(|f| *f = FrictionOutcome::default());
+        sc.idler_torque.iter_mut().for_each(|t| *t = 0.0);
+        for (k, &stage) in m.stages.iter().enumerate() {
+            let started = self.profile.as_ref().map(|_| Instant::now());
+            match stage {
+                Stage::Gravity => forces::gravity(&m.mass, m.gravity, &mut sc.force),
+                Stage::Axial => forces::axial(
+                    &s.position,
+                    &m.axial_stiffness,
+                    &m.rest_length,
+                    m.tension_only,
+                    &mut sc.force,
+                    &mut sc.tension,
+                ),
+                Stage::AxialDamped => forces::axial_damped(
+                    &s.position,
+                    &s.velocity,
+                    &m.axial_stiffness,
+                    &m.axial_damping,
+                    &m.rest_length,
+                    m.tension_only,
+                    &mut sc.force,
+                    &mut sc.tension,
+                ),
+                Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
+                Stage::PulleyContact => {
+                    for (j, p) in m.pulleys.iter().enumerate() {
+                        let body = PulleyBody {
+                            center: s.pulley_center(m, j),
+                            center_velocity: s.pulley_center_velocity(m, j),
+                            radius: p.radius,
+                            stiffness: p.contact_stiffness,
+                            damping: p.contact_damping,
+                            margin: p.window_margin,
+                        };
+                        contact::update_window(&mut s.pulley_window[j], &s.position, &body);
+                        sc.pulley_force[j] = contact::pulley_contact(
+                            &s.pulley_window[j],
+                            &s.position,
+                            &s.velocity,
+                            &body,
+                            &mut sc.force,
+                            &mut sc.contacts[j],
+                        );
+                    }
+                }
+                Stage::IdlerContact => {
+                    for (k, d) in m.idlers.iter().enumerate() {
+                        let body = IdlerBody {
+                            center: d.center,
+                            radius: d.radius,
+                            stiffness: d.contact_stiffness,
+                            damping: d.contact_damping,
+                        };
+                        sc.idler_contacts[k] = contact::idler_contact(
+                            &mut s.idler_element[k],
+                            &s.position,
+                            &s.velocity,
+                            &body,
+                            &mut sc.force,
+                        );
+                    }
+                }
+                Stage::Drives => {
+                    if effects.drives {
+                        for (j, p) in m.pulleys.iter().enumerate() {
+                            if let Some(d) = &p.drive {
+                                sc.drive_torque[j] = d.torque_at(s.time, s.pulley_omega[j]);
+                            }
+                        }
+                    }
+                }
+                Stage::PulleyFriction => {
+                    if effects.friction {
+                        for (j, p) in m.pulleys.iter().enumerate() {
+                            let FrictionModel::StickForce {
+                                static_coefficient,
+                                kinetic_coefficient,
+                            } = p.friction
+                            else {
+                                continue;
+                            };
+                            if static_coefficient == 0.0 || sc.contacts[j].is_empty() {
+                                continue;
+                            }
+                            let fp = FrictionPulley {
+                                radius: p.radius,
+                                inertia: p.inertia,
+                                omega: s.pulley_omega[j],
+                                center_velocity: s.pulley_center_velocity(m, j),
+                                applied_torque: sc.drive_torque[j],
+                                mu_static: static_coefficient,
+                                mu_kinetic: kinetic_coefficient,
+                            };
+                            let out = friction::pulley_stick_friction(
+                                &sc.contacts[j],
+                                &fp,
+                                &s.velocity,
+                                mass,
+                                dt,
+                                &mut sc.force,
+                                &mut sc.stick[j],
+                            );
+                            sc.pulley_force[j] += out.force;
+                            sc.friction[j] = out;
+                        }
+                    }
+                }
+                Stage::IdlerFriction => {
+                    if effects.friction {
+                        for (k, d) in m.idlers.iter().enumerate() {
+                            let FrictionModel::StickForce {
+                                static_coefficient,
+                                kinetic_coefficient,
+                            } = d.friction
+                            else {
+                                continue;
+                            };
+                            let c = sc.idler_contacts[k];
+                            if !c.active || static_coefficient == 0.0 {
+                                continue;
+                            }
+                            let fi = FrictionIdler {
+                                radius: d.radius,
+                                inertia: d.inertia,
+                                omega: s.idler_omega[k],
+                                mu_static: static_coefficient,
+                                mu_kinetic: kinetic_coefficient,
+                            };
+                            let (f, _) = friction::idler_stick_friction(
+                                &c,
+                                &fi,
+                                &s.velocity,
+                                mass,
+                                dt,
+                                &mut sc.force,
+                            );
+                            sc.idler_torque[k] = d.radius * f;
+                        }
+                    }
+                }
+                Stage::Brakes => {
+                    if effects.drives {
+                        for (j, p) in m.pulleys.iter().enumerate() {
+                            if let Some(b) = &p.brake {
+                                let capacity = b.capacity.eval(s.time);
+                                // Torque that would stop the pulley this step, clipped to
+                                // the capacity: holds at rest, never reverses the motion.
+                                let other = sc.drive_torque[j] + sc.friction[j].torque;
+                                let needed = -(p.inertia * s.pulley_omega[j] / dt + other);
+                                sc.brake_torque[j] = needed.clamp(-capacity, capacity);
+                            }
+                        }
+                    }
+                }
+                Stage::Takeups => {}
+            }
+            if let (Some(t0), Some(profile)) = (started, self.profile.as_mut()) {
+                profile[k] += t0.elapsed().as_secs_f64();
+            }
+        }
+    }
+
+    /// Central-difference update (thesis eq. 4.59–4.60, 4.62, 4.64–4.65).
+    fn integrate(&mut self) -> BeltResult<()> {
+        let m = &self.model;
+        let s = &mut self.state;
+        let sc = &self.scratch;
+        let dt = m.dt;
+        let inv_mass = &self.inertia.inv_mass;
+        let mut check = 0.0;
+        for ((x, v), (f, im)) in s
+            .position
+            .iter_mut()
+            .zip(s.velocity.iter_mut())
+            .zip(sc.force.iter().zip(inv_mass))
+        {
+            *v += f * (dt * im);
+            *x += *v * dt;
+            check += x.x + x.y + v.x + v.y;
+        }
+        for (j, p) in m.pulleys.iter().enumerate() {
+            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let old = s.pulley_omega[j];
+            let new = old + dt * torque / p.inertia;
+            s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
+            s.pulley_omega[j] = new;
+            s.pulley_angle[j] += new * dt;
+            check += new;
+            if let Some(t) = &p.takeup {
+                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                s.takeup_speed[j] += dt * f / self.inertia.takeup_mass[j];
+                s.takeup_travel[j] += dt * s.takeup_speed[j];
+                if s.takeup_travel[j] < t.travel_min {
+                    s.takeup_travel[j] = t.travel_min;
+                    s.takeup_speed[j] = s.takeup_speed[j].max(0.0);
+                } else if s.takeup_travel[j] > t.travel_max {
+                    s.takeup_travel[j] = t.travel_max;
+                    s.takeup_speed[j] = s.takeup_speed[j].min(0.0);
+                }
+                check += s.takeup_travel[j] + s.takeup_speed[j];
+            }
+        }
+        for (k, d) in m.idlers.iter().enumerate() {
+            s.idler_omega[k] += dt * sc.idler_torque[k] / d.inertia;
+            check += s.idler_omega[k];
+        }
+        s.time += dt;
+        s.step += 1;
+        if !check.is_finite() {
+            return Err(self.locate_non_finite());
+        }
+        Ok(())
+    }
+
+    fn locate_non_finite(&self) -> BeltError {
+        let s = &self.state;
+        let diverged = |quantity: &str, location: String| BeltError::Diverged {
+            time: s.time,
+            step: s.step,
+            quantity: quantity.to_string(),
+            location,
+        };
+        for i in 0..self.model.nodes {
+            let (x, v) = (s.position[i], s.velocity[i]);
+            let checks = [
+                ("position x", x.x),
+                ("position y", x.y),
+                ("velocity x", v.x),
+                ("velocity y", v.y),
+                ("force x", self.scratch.force[i].x),
+                ("force y", self.scratch.force[i].y),
+            ];
+            for (q, val) in checks {
+                if !val.is_finite() {
+                    let e = if i == 0 { self.model.nodes - 1 } else { i - 1 };
+                    return diverged(q, format!("node {i} (between elements {e} and {i})"));
+                }
+            }
+        }
+        for (j, p) in self.model.pulleys.iter().enumerate() {
+            if !s.pulley_omega[j].is_finite() {
+                return diverged("angular speed", format!("pulley {}", p.name));
+            }
+            if !s.takeup_travel[j].is_finite() || !s.takeup_speed[j].is_finite() {
+                return diverged("takeup travel", format!("pulley {}", p.name));
+            }
+        }
+        for k in 0..self.model.idlers.len() {
+            if !s.idler_omega[k].is_finite() {
+                return diverged("angular speed", format!("idler {k}"));
+            }
+        }
+        diverged("energy", "the model".to_string())
+    }
+
+    /// Advance `steps` steps without recording.
+    pub fn step(&mut self, steps: u64) -> BeltResult<()> {
+        for _ in 0..steps {
+            self.evaluate(Effects::ALL);
+            self.integrate()?;
+        }
+        Ok(())
+    }
+
+    /// Start a new recording: the state is sampled now and every `every` steps.
+    pub fn begin_recording(&mut self, channels: Channels, every: u64) {
+        self.recording = Recording::new(
+            channels,
+            self.model.nodes,
+            self.model.pulleys.len(),
+            self.model.idlers.len(),
+        );
+        self.record_every = every.max(1);
+        self.record_counter = 0;
+    }
+
+    /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
+    /// blow-up the recording keeps everything sampled before it.
+    pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
+        for _ in 0..steps {
+            self.evaluate(Effects::ALL);
+            if self.record_counter.is_multiple_of(self.record_every) {
+                self.sample();
+            }
+            self.record_counter += 1;
+            self.integrate()?;
+        }
+        Ok(())
+    }
+
+    /// Close a recording: sample the final state if it falls on the recording grid.
+    pub fn end_recording(&mut self) {
+        if self.record_counter.is_multiple_of(self.record_every) {
+            self.evaluate(Effects::ALL);
+            self.sample();
+        }
+    }
+
+    /// Run for `duration` seconds (rounded to whole steps), sampling every `every` steps.
+    pub fn run(&mut self, duration: f64, every: u64, channels: Channels) -> BeltResult<&Recording> {
+        if !(duration.is_finite() && duration >= 0.0) {
+            return Err(BeltError::invalid(
+                "duration",
+                duration,
+                "must be a finite number ≥ 0",
+            ));
+        }
+        let steps = (duration / self.model.dt).round() as u64;
+        self.begin_recording(channels, every);
+        self.advance(steps)?;
+        self.end_recording();
+        Ok(&self.recording)
+    }
+
+    /// Energies at the current state; call right after `evaluate` (uses the accelerations
+    /// to centre the half-step velocities on t).
+    fn energies(&self) -> Energies {
+        let m = &self.model;
+        let s = &self.state;
+        let sc = &self.scratch;
+        let half = 0.5 * m.dt;
+        let mut e = Energies {
+            drive_work: s.drive_work,
+            ..Default::default()
+        };
+        let n = m.nodes;
+        for i in 0..n {
+            let v = s.velocity[i] + sc.force[i] * (half * self.inertia.inv_mass[i]);
+            e.kinetic += 0.5 * m.mass[i] * v.norm_squared();
+            if m.gravity > 0.0 {
+                e.gravity += m.mass[i] * m.gravity * s.position[i].y;
+            }
+            let j = (i + 1) % n;
+            let stretch = (s.position[j] - s.position[i]).norm() - m.rest_length[i];
+            if !(m.tension_only && stretch < 0.0) {
+                e.strain += 0.5 * m.axial_stiffness[i] * stretch * stretch;
+            }
+        }
+        if m.has_stage(Stage::Bending) {
+            for i in 0..n {
+                let theta = forces::bending_angle(&s.position, i);
+                e.bending += 0.5 * m.bending_stiffness[i] * theta * theta;
+            }
+        }
+        for (j, p) in m.pulleys.iter().enumerate() {
+            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let w = s.pulley_omega[j] + half * torque / p.inertia;
+            e.kinetic += 0.5 * p.inertia * w * w;
+            if let Some(t) = &p.takeup {
+                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let u = s.takeup_speed[j] + half * f / self.inertia.takeup_mass[j];
+                e.kinetic += 0.5 * t.moving_mass * u * u;
+                e.gravity -= t.pull * s.takeup_travel[j];
+            }
+            for (&d, k) in sc.contacts[j]
+                .penetration
+                .iter()
+                .zip(std::iter::repeat(p.contact_stiffness))
+            {
+                e.contact += 0.5 * k * d * d;
+            }
+        }
+        for (k, d) in m.idlers.iter().enumerate() {
+            let w = s.idler_omega[k] + half * sc.idler_torque[k] / d.inertia;
+            e.kinetic += 0.5 * d.inertia * w * w;
+            let c = &sc.idler_contacts[k];
+            if c.active {
+                e.contact += 0.5 * d.contact_stiffness * c.penetration * c.penetration;
+            }
+        }
+        e
+    }
+
+    /// Energies of the current state, J (evaluates the forces once).
+    pub fn current_energies(&mut self) -> Energies {
+        self.evaluate(Effects::ALL);
+        self.energies()
+    }
+
+    /// Append the current state to the recording; call right after `evaluate`.
+    fn sample(&mut self) {
+        let e = self.energies();
+        let m = &self.model;
+        let s = &self.state;
+        let sc = &self.scratch;
+        let r = &mut self.recording;
+        let half = 0.5 * m.dt;
+        r.time.push(s.time);
+        if r.channels.tension {
+            r.tension.extend_from_slice(&sc.tension);
+        }
+        if r.channels.node_position {
+            for x in &s.position {
+                r.node_position.extend_from_slice(&[x.x, x.y]);
+            }
+        }
+        if r.channels.node_velocity {
+            for (v, (f, im)) in s
+                .velocity
+                .iter()
+                .zip(sc.force.iter().zip(&self.inertia.inv_mass))
+            {
+                let w = v + f * (half * im);
+                r.node_velocity.extend_from_slice(&[w.x, w.y]);
+            }
+        }
+        for (j, p) in m.pulleys.iter().enumerate() {
+            let c = s.pulley_center(m, j);
+            r.pulley_position.extend_from_slice(&[c.x, c.y]);
+            r.takeup_travel.push(s.takeup_travel[j]);
+            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            r.pulley_speed
+                .push(s.pulley_omega[j] + half * torque / p.inertia);
+            r.friction_torque.push(sc.friction[j].torque);
+            r.drive_torque.push(sc.drive_torque[j]);
+            r.brake_torque.push(sc.brake_torque[j]);
+            r.pulley_force
+                .extend_from_slice(&[sc.pulley_force[j].x, sc.pulley_force[j].y]);
+            r.normal_force
+                .push(sc.contacts[j].normal_force.iter().sum());
+            r.friction_force.push(sc.friction[j].tangential);
+            r.contact_nodes.push(sc.contacts[j].len() as f64);
+            r.slipping_nodes.push(sc.friction[j].slipping as f64);
+        }
+        for (k, d) in m.idlers.iter().enumerate() {
+            let c = &sc.idler_contacts[k];
+            r.idler_force
+                .push(if c.active { c.normal_force } else { 0.0 });
+            r.idler_speed
+                .push(s.idler_omega[k] + half * sc.idler_torque[k] / d.inertia);
+        }
+        r.energy.extend_from_slice(&[
+            e.kinetic,
+            e.strain,
+            e.bending,
+            e.gravity,
+            e.contact,
+            e.total(),
+            e.drive_work,
+        ]);
+    }
+
+    /// Largest out-of-balance force on a node or takeup relative to the largest tension.
+    fn residual(&self) -> f64 {
+        let sc = &self.scratch;
+        let mut worst = sc.force.iter().map(|f| f.norm()).fold(0.0, f64::max);
+        for (j, p) in self.model.pulleys.iter().enumerate() {
+            if let Some(t) = &p.takeup {
+                worst = worst.max((t.direction.dot(&sc.pulley_force[j]) + t.pull).abs());
+            }
+        }
+        let scale = sc
+            .tension
+            .iter()
+            .map(|t| t.abs())
+            .fold(0.0, f64::max)
+            .max(
+                self.model
+                    .mass
+                    .iter()
+                    .fold(0.0, |a: f64, &m| a.max(m * self.model.gravity)),
+            )
+            .max(f64::MIN_POSITIVE);
+        worst / scale
+    }
+
+    /// Relax to static equilibrium (thesis §6.2). Drives and brakes are off; friction is
+    /// off unless `options.friction`. Both methods run on fictitious masses m̃ = K·Δt²
+    /// (Underwood's dynamic relaxation), since time is not physical here; gravity still acts
+    /// on the true masses. Simulated time does not advance. On return all velocities are zero.
+    pub fn stabilise(&mut self, options: &StabiliseOptions) -> BeltResult<StabiliseReport> {
+        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+            return Err(BeltError::invalid(
+                "tolerance",
+                options.tolerance,
+                "must be > 0",
+            ));
+        }
+        let (time, step) = (self.state.time, self.state.step);
+        let effects = Effects {
+            friction: options.friction,
+            drives: false,
+        };
+        self.state.zero_velocities();
+        self.inertia = Inertia::scaled(&self.model);
+        let result = match options.method {
+            Relaxation::KineticEnergy => self.relax_kinetic(effects, options),
+            Relaxation::Fire => self.relax_fire(effects, options),
+        };
+        self.inertia = Inertia::physical(&self.model);
+        self.state.zero_velocities();
+        self.state.time = time;
+        self.state.step = step;
+        result
+    }
+
+    fn relax_kinetic(
+        &mut self,
+        effects: Effects,
+        options: &StabiliseOptions,
+    ) -> BeltResult<StabiliseReport> {
+        let mut resets = 0;
+        let mut residual = f64::INFINITY;
+        for k in 0..options.max_steps {
+            self.evaluate(effects);
+            if k.is_multiple_of(32) {
+                residual = self.residual();
+                if residual < options.tolerance {
+                    return Ok(StabiliseReport {
+                        steps: k,
+                        residual,
+                        converged: true,
+                        resets,
+                    });
+                }
+            }
+            // Thesis §6.2 zeroes every velocity at a peak of the total kinetic energy. With
+            // stiff contact the total is dominated by fast contact modes and the global
+            // reset stalls the slow ones, so each degree of freedom is reset at its own
+            // kinetic-energy peak (where its power F·v turns negative).
+            resets += self.reset_at_local_peaks();
+            self.integrate()?;
+        }
+        Ok(StabiliseReport {
+            steps: options.max_steps,
+            residual,
+            converged: false,
+            resets,
+        })
+    }
+
+    fn reset_at_local_peaks(&mut self) -> u64 {
+        let s = &mut self.state;
+        let sc = &self.scratch;
+        let mut resets = 0;
+        for (v, f) in s.velocity.iter_mut().zip(&sc.force) {
+            if v.dot(f) < 0.0 {
+                *v = V2::zeros();
+                resets += 1;
+            }
+        }
+        for (j, p) in self.model.pulleys.iter().enumerate() {
+            if let Some(t) = &p.takeup {
+                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                if s.takeup_speed[j] * f < 0.0 {
+                    s.takeup_speed[j] = 0.0;
+                    resets += 1;
+                }
+            }
+        }
+        resets
+    }
+
+    fn relax_fire(
+        &mut self,
+        effects: Effects,
+        options: &StabiliseOptions,
+    ) -> BeltResult<StabiliseReport> {
+        const N_MIN: u32 = 5;
+        const F_INC: f64 = 1.1;
+        const F_DEC: f64 = 0.5;
+        const ALPHA_START: f64 = 0.1;
+        const F_ALPHA: f64 = 0.99;
+        let dt0 = self.model.dt;
+        // The scaled masses put every degree of freedom at ωΔt ≤ 1 for Δt = dt0; allow
+        // FIRE to grow the step up to 1.5·dt0 (still below the limit ωΔt = 2).
+        let dt_max = 1.5 * dt0;
+        let mut dt = dt0;
+        let mut alpha = ALPHA_START;
+        let mut positive = 0u32;
+        let mut resets = 0;
+        let mut residual = f64::INFINITY;
+        let mut result = Ok(());
+        for k in 0..options.max_steps {
+            self.evaluate(effects);
+            if k.is_multiple_of(32) {
+                residual = self.residual();
+                if residual < options.tolerance {
+                    self.model.dt = dt0;
+                    return Ok(StabiliseReport {
+                        steps: k,
+                        residual,
+                        converged: true,
+                        resets,
+                    });
+                }
+            }
+            // FIRE mixing on the node and takeup velocities (pulleys spin only by friction).
+            let (power, vnorm2, fnorm2) = self.fire_norms();
+            if power > 0.0 {
+                let mix = alpha * (vnorm2 / fnorm2.max(f64::MIN_POSITIVE)).sqrt();
+                self.fire_mix(1.0 - alpha, mix);
+                positive += 1;
+                if positive > N_MIN {
+                    dt = (dt * F_INC).min(dt_max);
+                    alpha *= F_ALPHA;
+                }
+            } else {
+                self.state.zero_velocities();
+                resets += 1;
+                positive = 0;
+                dt = (dt * F_DEC).max(dt0);
+                alpha = ALPHA_START;
+            }
+            self.model.dt = dt;
+            let step = self.integrate();
+            self.model.dt = dt0;
+            if let Err(e) = step {
+                result = Err(e);
+                break;
+            }
+        }
+        self.model.dt = dt0;
+        result?;
+        Ok(StabiliseReport {
+            steps: options.max_steps,
+            residual,
+            converged: false,
+            resets,
+        })
+    }
+
+    /// FIRE works in mass-weighted coordinates (p = √m̃·v, g = F/√m̃), so that mixing the
+    /// velocity towards the force never puts a light degree of freedom out of step.
+    /// Returns (power F·v, |p|², |g|²).
+    fn fire_norms(&self) -> (f64, f64, f64) {
+        let s = &self.state;
+        let sc = &self.scratch;
+        let (mut p, mut vv, mut ff) = (0.0, 0.0, 0.0);
+        for ((v, f), m) in s.velocity.iter().zip(&sc.force).zip(&self.inertia.mass) {
+            p += v.dot(f);
+            vv += m * v.norm_squared();
+            ff += f.norm_squared() / m;
+        }
+        for (j, pl) in self.model.pulleys.iter().enumerate() {
+            if let Some(t) = &pl.takeup {
+                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let v = s.takeup_speed[j];
+                let m = self.inertia.takeup_mass[j];
+                p += v * f;
+                vv += m * v * v;
+                ff += f * f / m;
+            }
+        }
+        (p, vv, ff)
+    }
+
+    /// p ← keep·p + mix·g in mass-weighted coordinates: v ← keep·v + mix·F/m̃.
+    fn fire_mix(&mut self, keep: f64, mix: f64) {
+        let s = &mut self.state;
+        let sc = &self.scratch;
+        for ((v, f), im) in s
+            .velocity
+            .iter_mut()
+            .zip(&sc.force)
+            .zip(&self.inertia.inv_mass)
+        {
+            *v = *v * keep + f * (mix * im);
+        }
+        for (j, pl) in self.model.pulleys.iter().enumerate() {
+            if let Some(t) = &pl.takeup {
+                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                s.takeup_speed[j] =
+                    s.takeup_speed[j] * keep + f * mix / self.inertia.takeup_mass[j];
+            }
+        }
+    }
+
+    /// Forces at the current state without stepping (for inspection and tests).
+    pub fn forces(&mut self) -> &[V2] {
+        self.evaluate(Effects::ALL);
+        &self.scratch.force
+    }
+
+    /// Element tensions at the current state, N.
+    pub fn tensions(&mut self) -> &[f64] {
+        self.evaluate(Effects::ALL);
+        &self.scratch.tension
+    }
+}

@@ -1,0 +1,6 @@
+//! Rust integration tests: kernels and reference cases, without Python.
+#![allow(clippy::needless_range_loop)]
+mod common;
+
+mod case_h_statics;
+mod kernels;

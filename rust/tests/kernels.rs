@@ -1,0 +1,86 @@
+//! Kernel checks: forces are minus the gradient of their potentials; contact law.
+use beltrs::forces;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+fn ring(n: usize, wobble: f64) -> Vec<V2> {
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let r = 3.0 + wobble * ((7 * i) as f64).sin();
+            V2::new(r * a.cos() + 0.1 * (i as f64).cos(), 1.7 * r * a.sin())
+        })
+        .collect()
+}
+
+fn axial_energy(x: &[V2], k: &[f64], l0: &[f64]) -> f64 {
+    let n = x.len();
+    (0..n)
+        .map(|e| {
+            let d = (x[(e + 1) % n] - x[e]).norm() - l0[e];
+            0.5 * k[e] * d * d
+        })
+        .sum()
+}
+
+fn bending_energy(x: &[V2], kt: &[f64]) -> f64 {
+    (0..x.len())
+        .map(|j| 0.5 * kt[j] * forces::bending_angle(x, j).powi(2))
+        .sum()
+}
+
+/// Central finite difference of `energy` with respect to node i, component c.
+fn gradient(x: &[V2], i: usize, c: usize, energy: &dyn Fn(&[V2]) -> f64) -> f64 {
+    let h = 1e-6;
+    let mut xp = x.to_vec();
+    let mut xm = x.to_vec();
+    xp[i][c] += h;
+    xm[i][c] -= h;
+    (energy(&xp) - energy(&xm)) / (2.0 * h)
+}
+
+#[test]
+fn axial_force_is_minus_gradient_of_strain_energy() {
+    let x = ring(11, 0.3);
+    let n = x.len();
+    let k: Vec<f64> = (0..n).map(|e| 1e4 * (1.0 + 0.1 * e as f64)).collect();
+    let l0: Vec<f64> = (0..n).map(|e| 1.2 + 0.05 * e as f64).collect();
+    let mut f = vec![V2::zeros(); n];
+    let mut t = vec![0.0; n];
+    forces::axial(&x, &k, &l0, false, &mut f, &mut t);
+    let energy = |y: &[V2]| axial_energy(y, &k, &l0);
+    for i in 0..n {
+        for c in 0..2 {
+            let g = gradient(&x, i, c, &energy);
+            // Central differences with h = 1e-6 on O(1e4) forces: error ~ h²·E''' ≈ 1e-6 N.
+            assert!(
+                (f[i][c] + g).abs() < 1e-4 * (1.0 + g.abs()),
+                "node {i} comp {c}: {} vs {}",
+                f[i][c],
+                -g
+            );
+        }
+    }
+}
+
+#[test]
+fn bending_force_is_minus_gradient_of_bending_energy() {
+    let x = ring(9, 0.4);
+    let n = x.len();
+    let kt: Vec<f64> = (0..n).map(|j| 50.0 + 3.0 * j as f64).collect();
+    let mut f = vec![V2::zeros(); n];
+    forces::bending(&x, &kt, &mut f);
+    let energy = |y: &[V2]| bending_energy(y, &kt);
+    for i in 0..n {
+        for c in 0..2 {
+            let g = gradient(&x, i, c, &energy);
+            assert!(
+                (f[i][c] + g).abs() < 1e-5 * (1.0 + g.abs()),
+                "node {i} comp {c}: {} vs {}",
+                f[i][c],
+                -g
+            );
+        }
+    }
+}
