@@ -50,7 +50,7 @@ def plot_tension_around_belt(
         ax = axes[2]
         ax.plot(takeup_time, takeup_travel)
         ax.set_xlabel("time (s)")
-        ax.set_ylabel("takeup travel (m)")
+        ax.set_ylabel("takeup position y (m)")
         ax.grid(True)
     fig.tight_layout()
     out = Path(path)

@@ -3,4 +3,5 @@
 mod common;
 
 mod case_h_statics;
+mod friction_contact;
 mod kernels;

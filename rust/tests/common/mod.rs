@@ -20,6 +20,7 @@ pub fn case_h(elements: usize) -> Scene {
                 radius: 5.0,
                 mass: 600.0,
                 inertia: Some(15_000.0),
+                contact_stiffness: 2e8,
                 ..Default::default()
             },
             PulleySpec {
@@ -28,6 +29,7 @@ pub fn case_h(elements: usize) -> Scene {
                 radius: 5.0,
                 mass: 600.0,
                 inertia: Some(15_000.0),
+                contact_stiffness: 2e8,
                 takeup: Some(TakeupSpec {
                     counterweight: 30_000.0,
                     ..Default::default()
