@@ -15,7 +15,10 @@ fn fire_and_kinetic_damping_reach_the_same_equilibrium() {
             ..Default::default()
         })
         .unwrap();
-    assert!(rep_fire.converged && rep_kinetic.converged, "{rep_fire:?} {rep_kinetic:?}");
+    assert!(
+        rep_fire.converged && rep_kinetic.converged,
+        "{rep_fire:?} {rep_kinetic:?}"
+    );
     let (a, b) = (fire.state.takeup_travel[1], kinetic.state.takeup_travel[1]);
     // Both stop at a residual of 1e-7 of the largest tension; the takeup agrees to 1e-6.
     assert!((a - b).abs() < 1e-6 * a, "{a} vs {b}");
@@ -23,7 +26,10 @@ fn fire_and_kinetic_damping_reach_the_same_equilibrium() {
     // exact continuum 3.1410 m because the chord polygon frees belt length.
     assert!((a - 3.128).abs() < 0.08 * 3.128 && a > 3.141, "{a}");
     // FIRE is the faster relaxation.
-    assert!(rep_fire.steps * 10 < rep_kinetic.steps, "{rep_fire:?} {rep_kinetic:?}");
+    assert!(
+        rep_fire.steps * 10 < rep_kinetic.steps,
+        "{rep_fire:?} {rep_kinetic:?}"
+    );
     // Truly at rest: every velocity is zero on return.
     assert!(fire.state.velocity.iter().all(|v| v.norm() == 0.0));
 }
