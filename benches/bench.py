@@ -206,7 +206,7 @@ def bench_long_loop(steps: int, repeats: int, budget: float | None) -> dict[str,
         report = sim.stabilise(max_steps=max_steps)
         converged, relax_steps, residual = True, int(report["steps"]), float(report["residual"])
     except beltrs.BeltrsError as err:
-        converged, relax_steps, residual = False, max_steps, math.nan
+        converged, relax_steps, residual = False, max_steps, None
         info["stabilise_error"] = str(err)
     stab_wall = time.perf_counter() - t0
     info.update(
@@ -492,7 +492,7 @@ def main(argv: list[str] | None = None) -> int:
             "profile": prof,
         }
         with open(args.json, "w", encoding="utf-8") as fh:
-            json.dump(out, fh, indent=2, allow_nan=True)
+            json.dump(out, fh, indent=2)
         print(f"figures written to {args.json}")
     return 0
 
