@@ -5,7 +5,7 @@ import pytest
 from conftest import stabilised
 
 import beltrs
-from beltrs.analysis import arrival_time, strand_tension
+from beltrs.analysis import arrival_time, hustrulid_tangent_tensions
 from beltrs.analytic import takeup_step_response, two_pulley_takeup_statics
 
 EXACT = two_pulley_takeup_statics()
@@ -13,16 +13,7 @@ EXACT = two_pulley_takeup_statics()
 
 def tangent_tensions(sim):
     """Tensions at the tangent points A, B (lower) and C, D (upper), N."""
-    x = sim.state()["node_position"]
-    t = sim.tensions()
-    yl = -sim.takeup_travel[1]
-    # Nodal contact puts the strands up to r(1 - cos(θ/2)) = 0.17 m off x = ±5 at 89 elements.
-    kw = dict(tolerance=0.3)
-    a = strand_tension(x, t, (5, yl), (5, 100), (5, yl), **kw)
-    c = strand_tension(x, t, (5, yl), (5, 100), (5, 100), **kw)
-    b = strand_tension(x, t, (-5, 100), (-5, yl), (-5, yl), **kw)
-    d = strand_tension(x, t, (-5, 100), (-5, yl), (-5, 100), **kw)
-    return a, b, c, d
+    return hustrulid_tangent_tensions(sim.state()["node_position"], sim.tensions(), -sim.takeup_travel[1])
 
 
 def test_stabilised_state_is_at_rest(case_h):

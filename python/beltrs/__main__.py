@@ -14,7 +14,7 @@ def demo(elements: int, out: str) -> int:
     """Stabilise case H, print static tensions, takeup position and wall times, run the
     thesis §6.4.2 torque pulse for 3.6 s, and write a PNG of tension around the belt."""
     import beltrs
-    from beltrs.analysis import strand_tension
+    from beltrs.analysis import hustrulid_tangent_tensions
     from beltrs.analytic import two_pulley_takeup_statics
     from beltrs.plot import plot_tension_around_belt
 
@@ -30,11 +30,7 @@ def demo(elements: int, out: str) -> int:
     tension = sim.tensions()
     travel = float(sim.takeup_travel[1])
     yl = -travel
-    kw = dict(tolerance=0.3)
-    ta = strand_tension(x, tension, (5, yl), (5, 100), (5, yl), **kw)
-    tb = strand_tension(x, tension, (-5, 100), (-5, yl), (-5, yl), **kw)
-    tc = strand_tension(x, tension, (5, yl), (5, 100), (5, 100), **kw)
-    td = strand_tension(x, tension, (-5, 100), (-5, yl), (-5, 100), **kw)
+    ta, tb, tc, td = hustrulid_tangent_tensions(x, tension, yl)
     print(f"static equilibrium ({report['steps']} relaxation steps, {t_static * 1e3:.1f} ms wall):")
     print(f"  tension at lower tangent points A, B: {ta / 1e3:8.2f} {tb / 1e3:8.2f} kN"
           f"   (exact {exact.lower_tension / 1e3:.2f} kN)")

@@ -6,7 +6,7 @@ from typing import Sequence
 
 import numpy as np
 
-__all__ = ["strand_tension", "belt_coordinate", "arrival_time"]
+__all__ = ["arrival_time", "belt_coordinate", "hustrulid_tangent_tensions", "strand_tension"]
 
 
 def strand_tension(
@@ -59,3 +59,19 @@ def arrival_time(time: np.ndarray, signal: np.ndarray, fraction: float = 0.5) ->
         return float(time[0])
     t0, t1, d0, d1 = time[k - 1], time[k], dev[k - 1], dev[k]
     return float(t0 + (level - d0) * (t1 - t0) / (d1 - d0))
+
+
+def hustrulid_tangent_tensions(
+    node_position: np.ndarray, tension: np.ndarray, takeup_y: float, top_y: float = 100.0, half_width: float = 5.0
+) -> tuple[float, float, float, float]:
+    """Case H tensions (N) at the tangent points A, B (lower pulley at ``takeup_y``) and
+    C, D (upper pulley at ``top_y``), from straight-line fits along the two strands at
+    x = ±``half_width`` (m). Nodal contact puts the strands up to r(1 - cos(θ/2)) off the
+    tangent line at coarse meshes (0.17 m at 89 elements), hence the 0.3 m tolerance."""
+    w, yl, yt = half_width, takeup_y, top_y
+    kw = dict(tolerance=0.3)
+    a = strand_tension(node_position, tension, (w, yl), (w, yt), (w, yl), **kw)
+    b = strand_tension(node_position, tension, (-w, yt), (-w, yl), (-w, yl), **kw)
+    c = strand_tension(node_position, tension, (w, yl), (w, yt), (w, yt), **kw)
+    d = strand_tension(node_position, tension, (-w, yt), (-w, yl), (-w, yt), **kw)
+    return a, b, c, d
