@@ -99,27 +99,29 @@ pub fn pulley_stick_friction(
             }
         }
         let alpha = (known_torque + r * a_sum) / (pulley.inertia + r * r * m_sum);
-        let mut new_slip = false;
+        // Only the worst violator slips per pass: the others' stick forces were computed
+        // assuming it sticks, so they are re-solved with its kinetic force known (marking
+        // all violators at once can push a node the way its own friction acts).
+        let mut worst: Option<(usize, f64, f64)> = None;
         for k in 0..nc {
             if !scratch.sticking[k] {
                 continue;
             }
             let f = scratch.free[k] - mass[contacts.node[k]] * r * alpha;
-            let n = contacts.normal_force[k];
-            if f.abs() > pulley.mu_static * n {
-                let fk = pulley.mu_kinetic * n * f.signum();
-                scratch.force[k] = fk;
-                scratch.sticking[k] = false;
-                known_torque += r * fk;
-                slipping += 1;
-                new_slip = true;
-            } else {
-                scratch.force[k] = f;
+            scratch.force[k] = f;
+            let excess = f.abs() - pulley.mu_static * contacts.normal_force[k];
+            if excess > 0.0 && worst.is_none_or(|(_, e, _)| excess > e) {
+                worst = Some((k, excess, f));
             }
         }
-        if !new_slip {
+        let Some((k, _, f)) = worst else {
             break;
-        }
+        };
+        let fk = pulley.mu_kinetic * contacts.normal_force[k] * f.signum();
+        scratch.force[k] = fk;
+        scratch.sticking[k] = false;
+        known_torque += r * fk;
+        slipping += 1;
     }
     let mut out = FrictionOutcome {
         slipping,

@@ -781,15 +781,13 @@ fn kinetic_friction_never_reverses_relative_motion() {
     assert_eq!(slipped, 60);
 }
 
-/// Two contacts on a light pulley. The all-stick solve flags both at once (α assumes both
-/// stick); once both carry µk·N the pulley gets no net friction torque, and contact 1 —
-/// which had zero relative speed — is dragged ahead of the surface *by its own friction*
+/// Two contacts on a light pulley. Flagging every violator of the all-stick solve at once
+/// (α assumes both stick) gives both µk·N, the pulley no net friction torque, and drags
+/// contact 1 — which had zero relative speed — ahead of the surface *by its own friction*
 /// (v_n' = +0.08 m/s with friction on the node along +t: negative dissipation). With
-/// contact 0 slipping alone, contact 1 would need only |f| = 72.7 N < µs·N = 100 N, so it
-/// should stick. Documents a limitation of the slip loop (no re-admission of nodes flagged
-/// in the same pass); run with `--ignored` to see it.
+/// contact 0 slipping alone, contact 1 needs only |f| = 72.7 N < µs·N = 100 N and sticks.
+/// The slip loop therefore releases only the worst violator per pass.
 #[test]
-#[ignore = "known issue: simultaneous slip flags can reverse relative motion (see report)"]
 fn multi_contact_slip_never_reverses_relative_motion() {
     let pulley = FrictionPulley {
         radius: 1.0,
