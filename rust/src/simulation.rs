@@ -21,6 +21,11 @@ pub struct Effects {
     pub friction: bool,
     /// Drive torques and brakes.
     pub drives: bool,
+    /// Quasi-static friction (static relaxation): the stick force balances the tangential
+    /// force on a node but does not cancel its velocity relative to the surface (the
+    /// m·v_n/Δt term is dropped), so friction acts as a constraint on the path to
+    /// equilibrium and never as a velocity-dependent drag that stalls the relaxation.
+    pub quasi_static_friction: bool,
 }
 
 impl Effects {
@@ -28,6 +33,7 @@ impl Effects {
     pub const ALL: Effects = Effects {
         friction: true,
         drives: true,
+        quasi_static_friction: false,
     };
 }
 
@@ -267,6 +273,13 @@ impl Simulation {
         let sc = &mut self.scratch;
         let mass = &self.inertia.mass;
         let dt = m.dt;
+        // The friction solve divides the relative speed by this step; an infinite step
+        // drops the velocity term (quasi-static friction).
+        let friction_dt = if effects.quasi_static_friction {
+            f64::INFINITY
+        } else {
+            dt
+        };
         sc.force.iter_mut().for_each(|f| *f = V2::zeros());
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
@@ -371,7 +384,7 @@ impl Simulation {
                                 &fp,
                                 &s.velocity,
                                 mass,
-                                dt,
+                                friction_dt,
                                 &mut sc.force,
                                 &mut sc.stick[j],
                             );
@@ -406,7 +419,7 @@ impl Simulation {
                                 &fi,
                                 &s.velocity,
                                 mass,
-                                dt,
+                                friction_dt,
                                 &mut sc.force,
                             );
                             sc.idler_torque[k] = d.radius * f;
@@ -755,6 +768,7 @@ impl Simulation {
         let effects = Effects {
             friction: options.friction,
             drives: false,
+            quasi_static_friction: true,
         };
         self.state.zero_velocities();
         self.inertia = Inertia::scaled(&self.model);
@@ -821,6 +835,17 @@ impl Simulation {
                     s.takeup_speed[j] = 0.0;
                     resets += 1;
                 }
+            }
+            let t = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            if s.pulley_omega[j] * t < 0.0 {
+                s.pulley_omega[j] = 0.0;
+                resets += 1;
+            }
+        }
+        for (w, t) in s.idler_omega.iter_mut().zip(&sc.idler_torque) {
+            if *w * t < 0.0 {
+                *w = 0.0;
+                resets += 1;
             }
         }
         resets
@@ -917,6 +942,18 @@ impl Simulation {
                 ff += f * f / m;
             }
         }
+        for (j, pl) in self.model.pulleys.iter().enumerate() {
+            let (w, t) = (s.pulley_omega[j], self.pulley_torque(j));
+            p += w * t;
+            vv += pl.inertia * w * w;
+            ff += t * t / pl.inertia;
+        }
+        for (k, d) in self.model.idlers.iter().enumerate() {
+            let (w, t) = (s.idler_omega[k], sc.idler_torque[k]);
+            p += w * t;
+            vv += d.inertia * w * w;
+            ff += t * t / d.inertia;
+        }
         (p, vv, ff)
     }
 
@@ -939,6 +976,19 @@ impl Simulation {
                     s.takeup_speed[j] * keep + f * mix / self.inertia.takeup_mass[j];
             }
         }
+        for (j, pl) in self.model.pulleys.iter().enumerate() {
+            let t = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            s.pulley_omega[j] = s.pulley_omega[j] * keep + t * mix / pl.inertia;
+        }
+        for (k, d) in self.model.idlers.iter().enumerate() {
+            s.idler_omega[k] = s.idler_omega[k] * keep + sc.idler_torque[k] * mix / d.inertia;
+        }
+    }
+
+    /// Net torque on pulley `j` from the last force evaluation, N·m.
+    fn pulley_torque(&self, j: usize) -> f64 {
+        let sc = &self.scratch;
+        sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j]
     }
 
     /// Forces at the current state without stepping (for inspection and tests).
@@ -951,5 +1001,22 @@ impl Simulation {
     pub fn tensions(&mut self) -> &[f64] {
         self.evaluate(Effects::ALL);
         &self.scratch.tension
+    }
+
+    /// Number of pulley contacts that slip at the current state (all effects on).
+    pub fn slipping_contacts(&mut self) -> usize {
+        self.evaluate(Effects::ALL);
+        self.scratch.friction.iter().map(|f| f.slipping).sum()
+    }
+
+    /// Force of the belt on takeup pulley `j` along its takeup line, against the
+    /// counterweight, N (0 for a pulley without a takeup). In static equilibrium it equals
+    /// the counterweight pull, (counterweight + pulley mass)·g along the line.
+    pub fn takeup_force(&mut self, j: usize) -> f64 {
+        self.evaluate(Effects::ALL);
+        match &self.model.pulleys[j].takeup {
+            Some(t) => -t.direction.dot(&self.scratch.pulley_force[j]),
+            None => 0.0,
+        }
     }
 }
