@@ -60,21 +60,27 @@ pub struct PulleyBody {
 
 /// Keep the window on the run of nodes within `radius + margin` of the centre. The window
 /// moves with the belt by at most a few nodes a step, so this is O(1) per step; only an
-/// empty window (belt lifted clear) triggers a full scan.
+/// empty window (belt lifted clear, or the run just left) triggers a full scan, in the same
+/// call, so no step is evaluated with a stale empty window.
 pub fn update_window(window: &mut ContactWindow, x: &[V2], body: &PulleyBody) {
     let n = x.len();
     let reach = body.radius + body.margin;
     let reach2 = reach * reach;
     let near = |i: usize| (x[i] - body.center).norm_squared() < reach2;
+    if window.len > 0 {
+        track_run(window, n, near);
+    }
     if window.len == 0 {
-        match (0..n).find(|&i| near(i)) {
-            Some(i) => {
-                window.first = i;
-                window.len = 1;
-            }
-            None => return,
+        if let Some(i) = (0..n).find(|&i| near(i)) {
+            window.first = i;
+            window.len = 1;
+            track_run(window, n, near);
         }
     }
+}
+
+/// Grow the window over near neighbours and drop far nodes at its ends.
+fn track_run(window: &mut ContactWindow, n: usize, near: impl Fn(usize) -> bool) {
     // Grow backwards, shrink the front, grow forwards, shrink the back.
     while window.len < n && near((window.first + n - 1) % n) {
         window.first = (window.first + n - 1) % n;

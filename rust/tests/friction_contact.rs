@@ -912,3 +912,40 @@ fn idler_stick_force_brings_contact_point_to_roll_speed() {
         assert_eq!(fs, 0.3 * weak.normal_force * f.signum());
     }
 }
+
+/// A window whose run of nodes leaves the pulley is re-found in the same call: the belt
+/// that touches elsewhere in that step is not missed for one step.
+#[test]
+fn emptied_window_rescans_in_the_same_step() {
+    let body = PulleyBody {
+        center: V2::zeros(),
+        center_velocity: V2::zeros(),
+        radius: 1.0,
+        stiffness: 1.0e7,
+        damping: 0.0,
+        margin: 0.05,
+    };
+    let n = 40;
+    let far = |i: usize| V2::new(10.0 + i as f64, 10.0);
+    let mut x: Vec<V2> = (0..n).map(far).collect();
+    for (k, i) in (5..9).enumerate() {
+        x[i] = V2::new(-0.3 + 0.2 * k as f64, -0.99);
+    }
+    let mut w = ContactWindow::default();
+    update_window(&mut w, &x, &body);
+    assert_eq!(window_nodes(&w, n), vec![5, 6, 7, 8]);
+    // Nodes 5..9 lift clear; nodes 20..23 now dip into the pulley.
+    for i in 5..9 {
+        x[i] = far(i);
+    }
+    for (k, i) in (20..23).enumerate() {
+        x[i] = V2::new(-0.1 + 0.1 * k as f64, 0.99);
+    }
+    update_window(&mut w, &x, &body);
+    assert_eq!(window_nodes(&w, n), vec![20, 21, 22]);
+    let v = vec![V2::zeros(); n];
+    let mut force = vec![V2::zeros(); n];
+    let mut out = PulleyContacts::default();
+    pulley_contact(&w, &x, &v, &body, &mut force, &mut out);
+    assert_eq!(out.node, vec![20, 21, 22]);
+}
