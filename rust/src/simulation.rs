@@ -102,17 +102,31 @@ impl Inertia {
     }
 
     /// Fictitious masses m̃ = K·Δt² that put every degree of freedom at the same distance
-    /// from its stability limit (ωΔt ≤ 1), as in Underwood's dynamic relaxation.
+    /// from its stability limit (ωΔt ≤ 1), as in Underwood's dynamic relaxation. K is the
+    /// Gershgorin row sum: a node touching a moving (takeup) pulley is coupled to it through
+    /// the contact stiffness, which adds an off-diagonal term to both rows, so the node
+    /// bound gains one contact stiffness and the takeup bound doubles. Without those terms
+    /// the node–takeup mode sits at ωΔt ≈ √2 and FIRE's longer steps turn it unstable.
     fn scaled(model: &Model) -> Inertia {
         let dt2 = model.dt * model.dt;
-        let mass: Vec<f64> = model.node_stiffness_bound.iter().map(|k| k * dt2).collect();
+        let takeup_contact = model
+            .pulleys
+            .iter()
+            .filter(|p| p.takeup.is_some())
+            .map(|p| p.contact_stiffness)
+            .fold(0.0, f64::max);
+        let mass: Vec<f64> = model
+            .node_stiffness_bound
+            .iter()
+            .map(|k| (k + takeup_contact) * dt2)
+            .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let takeup_mass = model
             .pulleys
             .iter()
             .enumerate()
             .map(|(j, p)| match p.takeup {
-                Some(_) => model.takeup_stiffness_bound[j] * dt2,
+                Some(_) => 2.0 * model.takeup_stiffness_bound[j] * dt2,
                 None => f64::INFINITY,
             })
             .collect();
@@ -122,6 +136,24 @@ impl Inertia {
             takeup_mass,
         }
     }
+}
+
+/// Contact stiffness, as a multiple of the stiffest belt element (EA/l), at which the
+/// static relaxation starts its continuation in contact stiffness.
+pub const CONTINUATION_START: f64 = 100.0;
+/// Factor between successive contact stiffnesses of the continuation.
+pub const CONTINUATION_FACTOR: f64 = 10.0;
+
+/// The scene with every pulley and idler contact stiffness multiplied by `scale`.
+fn soften_contact(scene: &Scene, scale: f64) -> Scene {
+    let mut soft = scene.clone();
+    for p in &mut soft.pulleys {
+        p.contact_stiffness *= scale;
+    }
+    for d in &mut soft.idlers {
+        d.contact_stiffness *= scale;
+    }
+    soft
 }
 
 /// Static relaxation method.
@@ -756,6 +788,13 @@ impl Simulation {
     /// off unless `options.friction`. Both methods run on fictitious masses m̃ = K·Δt²
     /// (Underwood's dynamic relaxation), since time is not physical here; gravity still acts
     /// on the true masses. Simulated time does not advance. On return all velocities are zero.
+    ///
+    /// Stiff contact makes the relaxation ill-conditioned (the slow takeup mode moves the
+    /// contact nodes, whose fictitious masses scale with the contact stiffness). When the
+    /// contact is more than [`CONTINUATION_START`]× stiffer than the stiffest belt element,
+    /// the relaxation is continued in contact stiffness: it starts at that ratio and
+    /// multiplies the stiffness by [`CONTINUATION_FACTOR`] per stage up to the scene's
+    /// value, each stage starting from the previous equilibrium. The report sums the steps.
     pub fn stabilise(&mut self, options: &StabiliseOptions) -> BeltResult<StabiliseReport> {
         if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
             return Err(BeltError::invalid(
@@ -764,6 +803,89 @@ impl Simulation {
                 "must be > 0",
             ));
         }
+        let ladder = self.contact_continuation();
+        if ladder.is_empty() {
+            return self.relax(options);
+        }
+        let full = self.model.clone();
+        let mut total = StabiliseReport {
+            steps: 0,
+            residual: f64::INFINITY,
+            converged: false,
+            resets: 0,
+        };
+        for scale in ladder {
+            let soft = Model::compile(&soften_contact(&full.scene, scale));
+            let stage = soft.and_then(|soft| {
+                self.model = soft;
+                self.scratch = Scratch::new(&self.model);
+                self.relax(&StabiliseOptions {
+                    max_steps: options.max_steps - total.steps,
+                    ..*options
+                })
+            });
+            match stage {
+                Ok(r) => {
+                    total.steps += r.steps;
+                    total.resets += r.resets;
+                    total.residual = r.residual;
+                    if !r.converged {
+                        break;
+                    }
+                }
+                Err(e) => {
+                    self.model = full;
+                    self.scratch = Scratch::new(&self.model);
+                    self.inertia = Inertia::physical(&self.model);
+                    return Err(e);
+                }
+            }
+        }
+        let remaining = options.max_steps - total.steps;
+        self.model = full;
+        self.scratch = Scratch::new(&self.model);
+        self.inertia = Inertia::physical(&self.model);
+        if total.steps > 0 && remaining > 0 && total.residual.is_finite() {
+            let r = self.relax(&StabiliseOptions {
+                max_steps: remaining,
+                ..*options
+            })?;
+            total.steps += r.steps;
+            total.resets += r.resets;
+            total.residual = r.residual;
+            total.converged = r.converged;
+        }
+        Ok(total)
+    }
+
+    /// Contact-stiffness scales (< 1) of the continuation stages, softest first; empty if
+    /// the contact is not much stiffer than the belt.
+    fn contact_continuation(&self) -> Vec<f64> {
+        let m = &self.model;
+        let stiffest_contact = m
+            .pulleys
+            .iter()
+            .map(|p| p.contact_stiffness)
+            .chain(m.idlers.iter().map(|d| d.contact_stiffness))
+            .fold(0.0, f64::max);
+        let stiffest_element = m
+            .axial_stiffness
+            .iter()
+            .zip(&m.rest_length)
+            .map(|(ea, l)| ea / l)
+            .fold(0.0, f64::max);
+        let start = CONTINUATION_START * stiffest_element / stiffest_contact;
+        let mut ladder = Vec::new();
+        let mut scale = start;
+        while scale < 1.0 / CONTINUATION_FACTOR.sqrt() {
+            ladder.push(scale);
+            scale *= CONTINUATION_FACTOR;
+        }
+        ladder
+    }
+
+    /// One relaxation at the current model's stiffnesses.
+    fn relax(&mut self, options: &StabiliseOptions) -> BeltResult<StabiliseReport> {
         let (time, step) = (self.state.time, self.state.step);
         let effects = Effects {
             friction: options.friction,
