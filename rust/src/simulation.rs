@@ -26,6 +26,10 @@ pub struct Effects {
     /// m·v_n/Δt term is dropped), so friction acts as a constraint on the path to
     /// equilibrium and never as a velocity-dependent drag that stalls the relaxation.
     pub quasi_static_friction: bool,
+    /// Axial and contact damping. The static relaxation turns them off: they do not change
+    /// the equilibrium, and on the fictitious masses (which can be far lighter than the
+    /// physical ones) an explicit damper would be unstable.
+    pub damping: bool,
 }
 
 impl Effects {
@@ -34,6 +38,7 @@ impl Effects {
         friction: true,
         drives: true,
         quasi_static_friction: false,
+        damping: true,
     };
 }
 
@@ -331,6 +336,14 @@ impl Simulation {
                     &mut sc.force,
                     &mut sc.tension,
                 ),
+                Stage::AxialDamped if !effects.damping => forces::axial(
+                    &s.position,
+                    &m.axial_stiffness,
+                    &m.rest_length,
+                    m.tension_only,
+                    &mut sc.force,
+                    &mut sc.tension,
+                ),
                 Stage::AxialDamped => forces::axial_damped(
                     &s.position,
                     &s.velocity,
@@ -349,7 +362,11 @@ impl Simulation {
                             center_velocity: s.pulley_center_velocity(m, j),
                             radius: p.radius,
                             stiffness: p.contact_stiffness,
-                            damping: p.contact_damping,
+                            damping: if effects.damping {
+                                p.contact_damping
+                            } else {
+                                0.0
+                            },
                             margin: p.window_margin,
                         };
                         contact::update_window(&mut s.pulley_window[j], &s.position, &body);
@@ -369,7 +386,11 @@ impl Simulation {
                             center: d.center,
                             radius: d.radius,
                             stiffness: d.contact_stiffness,
-                            damping: d.contact_damping,
+                            damping: if effects.damping {
+                                d.contact_damping
+                            } else {
+                                0.0
+                            },
                         };
                         sc.idler_contacts[k] = contact::idler_contact(
                             &mut s.idler_element[k],
@@ -891,6 +912,7 @@ impl Simulation {
             friction: options.friction,
             drives: false,
             quasi_static_friction: true,
+            damping: false,
         };
         self.state.zero_velocities();
         self.inertia = Inertia::scaled(&self.model);
