@@ -42,6 +42,10 @@ pub struct FrictionPulley {
     pub mu_static: f64,
     /// Kinetic coefficient.
     pub mu_kinetic: f64,
+    /// Holding capacity of a brake on the pulley, N·m (None: no brake acting). The brake is
+    /// solved with the friction: it either holds the pulley (which then moves as
+    /// prescribed, stopping this step) or slides at its capacity.
+    pub brake_capacity: Option<f64>,
 }
 
 /// Result of one pulley's friction solve.
@@ -55,6 +59,8 @@ pub struct FrictionOutcome {
     pub tangential: f64,
     /// Number of slipping nodes.
     pub slipping: usize,
+    /// Brake torque, N·m, when the pulley has a brake (solved with the friction).
+    pub brake_torque: Option<f64>,
 }
 
 /// Solve and apply stick-force friction for the nodes touching one pulley
@@ -65,6 +71,7 @@ pub struct FrictionOutcome {
 /// f_i = m_i v_n,i/Δt + t_i·F_i − m_i R (T + R·A)/(I + R² M), where A and M sum
 /// m_j v_n,j/Δt + t_j·F_j and m_j over S and T is the applied torque plus the torque of the
 /// slipping nodes. The node receives −f_i t_i, the pulley +f_i t_i and torque R f_i.
+/// A brake on the pulley is solved here too (see [`FrictionPulley::brake_capacity`]).
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_stick_friction(
     contacts: &PulleyContacts,
@@ -88,7 +95,38 @@ pub fn pulley_stick_friction(
         scratch.sticking.push(true);
         scratch.force.push(0.0);
     }
-    let mut known_torque = pulley.applied_torque;
+    // A brake that can hold the pulley fixes its motion: it stops this step. The nodes then
+    // stick to (or slip on) a pulley of prescribed motion, one by one, and the brake takes
+    // what the belt and the drive leave. If that exceeds its capacity it slides at the
+    // capacity, opposing the motion (or the tendency to move), a known torque below.
+    let mut brake = None;
+    if let Some(capacity) = pulley.brake_capacity {
+        let alpha = if dt.is_finite() {
+            -pulley.omega / dt
+        } else {
+            0.0
+        };
+        let mut tangential = 0.0;
+        let mut slipped = 0;
+        for k in 0..nc {
+            let (f, slips) = limit(
+                scratch.free[k] - mass[contacts.node[k]] * r * alpha,
+                contacts.normal_force[k],
+                pulley,
+            );
+            scratch.force[k] = f;
+            scratch.sticking[k] = !slips;
+            slipped += usize::from(slips);
+            tangential += f;
+        }
+        let needed = pulley.inertia * alpha - pulley.applied_torque - r * tangential;
+        if needed.abs() <= capacity {
+            return apply(contacts, scratch, force, r, slipped, Some(needed));
+        }
+        brake = Some(capacity.copysign(needed));
+        scratch.sticking.iter_mut().for_each(|s| *s = true);
+    }
+    let mut known_torque = pulley.applied_torque + brake.unwrap_or(0.0);
     let mut slipping = 0;
     loop {
         let (mut a_sum, mut m_sum) = (0.0, 0.0);
@@ -123,18 +161,41 @@ pub fn pulley_stick_friction(
         known_torque += r * fk;
         slipping += 1;
     }
+    apply(contacts, scratch, force, r, slipping, brake)
+}
+
+/// The friction force a contact can carry: the stick force `f` if within µs·N, else µk·N
+/// in its direction. Returns (force, slipping).
+fn limit(f: f64, normal: f64, pulley: &FrictionPulley) -> (f64, bool) {
+    if f.abs() > pulley.mu_static * normal {
+        (pulley.mu_kinetic * normal * f.signum(), true)
+    } else {
+        (f, false)
+    }
+}
+
+/// Apply the solved contact forces to the nodes and sum their action on the pulley.
+fn apply(
+    contacts: &PulleyContacts,
+    scratch: &StickScratch,
+    force: &mut [V2],
+    radius: f64,
+    slipping: usize,
+    brake_torque: Option<f64>,
+) -> FrictionOutcome {
     let mut out = FrictionOutcome {
         slipping,
+        brake_torque,
         ..Default::default()
     };
-    for k in 0..nc {
+    for k in 0..contacts.len() {
         let f = scratch.force[k];
         let t = perp(contacts.normal[k]);
         force[contacts.node[k]] -= t * f;
         out.force += t * f;
         out.tangential += f;
     }
-    out.torque = r * out.tangential;
+    out.torque = radius * out.tangential;
     out
 }
 

@@ -431,6 +431,10 @@ impl Simulation {
                                 applied_torque: sc.drive_torque[j],
                                 mu_static: static_coefficient,
                                 mu_kinetic: kinetic_coefficient,
+                                brake_capacity: match &p.brake {
+                                    Some(b) if effects.drives => Some(b.capacity.eval(s.time)),
+                                    _ => None,
+                                },
                             };
                             let out = friction::pulley_stick_friction(
                                 &sc.contacts[j],
@@ -483,6 +487,11 @@ impl Simulation {
                     if effects.drives {
                         for (j, p) in m.pulleys.iter().enumerate() {
                             if let Some(b) = &p.brake {
+                                if let Some(t) = sc.friction[j].brake_torque {
+                                    // Solved with the belt friction.
+                                    sc.brake_torque[j] = t;
+                                    continue;
+                                }
                                 let capacity = b.capacity.eval(s.time);
                                 // Torque that would stop the pulley this step, clipped to
                                 // the capacity: holds at rest, never reverses the motion.

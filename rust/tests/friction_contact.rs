@@ -471,6 +471,7 @@ fn single_case(rng: &mut Rng, moving_centre: bool) -> SingleCase {
         applied_torque: rng.uniform(-500.0, 500.0),
         mu_static: 1e9,
         mu_kinetic: 0.3,
+        brake_capacity: None,
     };
     let normal = unit(rng.uniform(0.0, std::f64::consts::TAU));
     let v = (0..4).map(|_| rng.vec(5.0)).collect();
@@ -550,6 +551,7 @@ fn stick_force_brings_all_sticking_nodes_to_surface_speed() {
             applied_torque: rng.uniform(-300.0, 300.0),
             mu_static: 1e9,
             mu_kinetic: 0.3,
+            brake_capacity: None,
         };
         let dt = rng.uniform(1e-5, 5e-4);
         // Five contacts on an arc, with nodes 0, 4, 8 not in contact (must be untouched).
@@ -612,6 +614,7 @@ fn nodes_left_sticking_after_a_slip_still_reach_surface_speed() {
             applied_torque: rng.uniform(-300.0, 300.0),
             mu_static: 0.5,
             mu_kinetic: 0.35,
+            brake_capacity: None,
         };
         let dt = 1e-4;
         let mut contacts = PulleyContacts::default();
@@ -797,6 +800,7 @@ fn multi_contact_slip_never_reverses_relative_motion() {
         applied_torque: 0.0,
         mu_static: 0.5,
         mu_kinetic: 0.4,
+        brake_capacity: None,
     };
     let dt = 1e-3;
     let mut contacts = PulleyContacts::default();
@@ -948,4 +952,78 @@ fn emptied_window_rescans_in_the_same_step() {
     let mut out = PulleyContacts::default();
     pulley_contact(&w, &x, &v, &body, &mut force, &mut out);
     assert_eq!(out.node, vec![20, 21, 22]);
+}
+
+/// A brake solved with the friction: holding, the pulley stops this step and the belt
+/// sticks to it (the brake takes the belt's and the drive's torque); beyond its capacity it
+/// slides at the capacity and the nodes see a free pulley with that known torque.
+#[test]
+fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
+    let dt = 1e-3;
+    let mass = vec![2.0, 2.0];
+    let mut contacts = PulleyContacts::default();
+    for (k, angle) in [0.3f64, 0.9].into_iter().enumerate() {
+        contacts.node.push(k);
+        contacts.normal.push(unit(angle));
+        contacts.normal_force.push(1000.0);
+        contacts.penetration.push(1e-4);
+    }
+    // Both nodes pulled along +t by 200 N (well inside µs·N = 500 N), pulley turning.
+    let pulley = FrictionPulley {
+        radius: 0.5,
+        inertia: 3.0,
+        omega: 0.2,
+        center_velocity: V2::zeros(),
+        applied_torque: 40.0,
+        mu_static: 0.5,
+        mu_kinetic: 0.4,
+        brake_capacity: Some(1.0e4),
+    };
+    let v: Vec<V2> = (0..2)
+        .map(|k| tangent(contacts.normal[k]) * (pulley.radius * pulley.omega))
+        .collect();
+    let pushed = |k: usize| tangent(contacts.normal[k]) * 200.0;
+    let mut force = vec![pushed(0), pushed(1)];
+    let mut scratch = StickScratch::default();
+    let out = pulley_stick_friction(&contacts, &pulley, &v, &mass, dt, &mut force, &mut scratch);
+    let brake = out
+        .brake_torque
+        .expect("a braked pulley reports its brake torque");
+    // Holding: the pulley stops this step, I·(0 − ω)/Δt = T + R·Σf + B.
+    let total = pulley.applied_torque + out.torque + brake;
+    assert_close(
+        "pulley stops",
+        pulley.omega + dt * total / pulley.inertia,
+        0.0,
+        1e-12,
+        1.0,
+    );
+    assert_eq!(out.slipping, 0);
+    // ... and every node stops with it (zero relative speed on a stopped pulley).
+    for (k, f) in force.iter().enumerate() {
+        let v_new = v[k] + f * (dt / mass[k]);
+        assert_close("node stops", v_new.norm(), 0.0, 1e-12, 1.0);
+    }
+
+    // The same with a weak brake: it slides at its capacity, opposing the motion.
+    let weak = FrictionPulley {
+        brake_capacity: Some(5.0),
+        ..pulley
+    };
+    let mut force = vec![pushed(0), pushed(1)];
+    let out = pulley_stick_friction(&contacts, &weak, &v, &mass, dt, &mut force, &mut scratch);
+    assert_eq!(out.brake_torque, Some(-5.0));
+    // Sticking nodes reach the surface speed of the pulley under T + B + R·Σf.
+    let omega_new = weak.omega + dt * (weak.applied_torque - 5.0 + out.torque) / weak.inertia;
+    for (k, f) in force.iter().enumerate() {
+        let t = tangent(contacts.normal[k]);
+        let v_new = v[k] + f * (dt / mass[k]);
+        assert_close(
+            "sticks to the sliding pulley",
+            t.dot(&v_new),
+            weak.radius * omega_new,
+            1e-9,
+            1.0,
+        );
+    }
 }
