@@ -153,7 +153,7 @@ def idler_conveyor(
     ]
 
     def row(y: float, pitch: float) -> list[Idler]:
-        count = int(math.floor((length - 2 * r) / pitch))
+        count = math.floor((length - 2 * r) / pitch)
         x0 = 0.5 * (length - (count - 1) * pitch)  # centred between the pulleys
         return [Idler(center=(round(x0 + i * pitch, 9), y),  # round: no 1.3999999999999986 in files radius=roll, contact_stiffness=1e8, contact_damping=1000.0,
                       friction=idler_friction)
