@@ -3,6 +3,8 @@ scene and metadata; bad input is one clear line on stderr and a nonzero exit."""
 
 import dataclasses
 import datetime
+import os
+import stat
 import subprocess
 import sys
 from pathlib import Path
@@ -132,3 +134,16 @@ def test_console_script(tmp_path):
         pytest.skip("the beltrs console script is not installed next to this Python")
     proc = subprocess.run([str(script), "check", str(EXAMPLES / "case_h.toml")], capture_output=True, text=True, timeout=120, check=False)
     assert proc.returncode == 0 and "valid; 89 nodes" in proc.stdout
+
+
+def test_output_files_get_the_usual_permissions(tmp_path):
+    """Written through a temporary file, but readable like any other file (not 0600)."""
+    mask = os.umask(0o022)
+    try:
+        path, out = scene_file(tmp_path), tmp_path / "r.npz"
+        assert main(["run", str(path), "--out", str(out), "--duration", "0.01", "--quiet"]) == 0
+        assert stat.S_IMODE(out.stat().st_mode) == 0o644
+        assert stat.S_IMODE(path.stat().st_mode) == 0o644
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["r.npz", "scene.toml"]
+    finally:
+        os.umask(mask)

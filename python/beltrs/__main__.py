@@ -11,9 +11,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import datetime
-import os
 import sys
-import tempfile
 import time
 from pathlib import Path
 from typing import Any, Optional, Sequence
@@ -89,15 +87,9 @@ def result_arrays(res: Any) -> dict[str, np.ndarray]:
 def write_npz(path: Path, arrays: dict[str, Any]) -> None:
     """Write ``arrays`` to ``path`` (uncompressed NPZ, readable with
     ``np.load(path)`` and no pickle), atomically: a temporary file, then a rename."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            np.savez(fh, **{k: np.asarray(v) for k, v in arrays.items()})
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    from beltrs.scene_file import atomic_write
+
+    atomic_write(path, lambda fh: np.savez(fh, **{k: np.asarray(v) for k, v in arrays.items()}), binary=True)
 
 
 def run_scene(

@@ -204,16 +204,30 @@ def dumps_scene(scene: Scene) -> str:
     return "\n".join(lines) + "\n"
 
 
-def save_scene(scene: Scene, path: PathLike) -> None:
-    """Write ``scene`` to ``path`` as TOML, atomically (temporary file, then rename)."""
-    text = dumps_scene(scene)
+def atomic_write(path: PathLike, data: Any, binary: bool) -> None:
+    """Write ``data`` (text or bytes, or a callable taking the open file) to ``path`` via a
+    temporary file in the same directory and a rename, so that a crash never leaves a
+    partial file. The file gets the usual permissions (0666 less the umask)."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes 0600 files
+        mode = "wb" if binary else "w"
+        kw = {} if binary else {"encoding": "utf-8", "newline": "\n"}
+        with os.fdopen(fd, mode, **kw) as fh:
+            if callable(data):
+                data(fh)
+            else:
+                fh.write(data)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+def save_scene(scene: Scene, path: PathLike) -> None:
+    """Write ``scene`` to ``path`` as TOML, atomically (temporary file, then rename)."""
+    atomic_write(path, dumps_scene(scene), binary=False)
