@@ -9,7 +9,8 @@ from . import analysis, analytic, scenes
 from ._beltrs import BeltrsError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import __version__
 from .result import Result
-from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
+from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Recording, Scene, Solver, Takeup
+from .scene_file import load_scene
 from .simulation import Simulation
 
 __all__ = [
@@ -21,6 +22,7 @@ __all__ = [
     "Friction",
     "Idler",
     "Pulley",
+    "Recording",
     "Result",
     "Scene",
     "SceneError",
@@ -31,5 +33,6 @@ __all__ = [
     "__version__",
     "analysis",
     "analytic",
+    "load_scene",
     "scenes",
 ]

@@ -3,14 +3,30 @@
 A :class:`Scene` is data only. :class:`beltrs.Simulation` validates and compiles it in the
 Rust engine; every error names the field (e.g. ``pulleys[1].radius``), the value and the
 rule broken. ``Scene.to_dict()`` gives the exact form the engine reads; unknown keys in
-that form are errors, never ignored.
+that form are errors, never ignored. ``Scene.from_dict()`` reads that form back strictly
+(unknown keys, with a "did you mean" suggestion, and wrong types raise
+:class:`beltrs.SceneError`), and ``Scene.save()`` / :func:`beltrs.load_scene` write and
+read the same structure as a TOML scene file (``docs/scene-format.md``).
+
+Constructing any of these classes normalises what it is given, so that a scene built in
+Python and the same scene read from a file compare equal: integers and NumPy scalars in
+float fields become ``float``, and sequences (lists, NumPy arrays) in sequence fields
+become tuples of ``float``. Values of the wrong type are left as given and reported when
+the scene is compiled or saved.
 """
 
 from __future__ import annotations
 
+import collections.abc
+import difflib
 import math
-from dataclasses import asdict, dataclass, field
-from typing import Any, Optional, Sequence
+import numbers
+import os
+import typing
+from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass
+from typing import Any, Mapping, Optional, Sequence, Union
+
+from ._beltrs import SceneError
 
 __all__ = [
     "Belt",
@@ -19,6 +35,7 @@ __all__ = [
     "Friction",
     "Idler",
     "Pulley",
+    "Recording",
     "Scene",
     "Solver",
     "Takeup",
@@ -40,9 +57,12 @@ class Friction:
     kinetic: Optional[float] = None
     model: str = "stick_force"
 
+    def __post_init__(self) -> None:
+        _normalise(self)
+
     def to_dict(self) -> dict[str, Any]:
-        kinetic = self.static if self.kinetic is None else self.kinetic
-        return {"model": self.model, "static": self.static, "kinetic": kinetic}
+        # kinetic None means "equal to static"; the engine applies that default itself.
+        return {"model": self.model, "static": self.static, "kinetic": self.kinetic}
 
 
 @dataclass
@@ -61,6 +81,9 @@ class Takeup:
     direction: tuple[float, float] = (0.0, -1.0)
     travel_min: float = -math.inf
     travel_max: float = math.inf
+
+    def __post_init__(self) -> None:
+        _normalise(self)
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -91,6 +114,9 @@ class Drive:
     speed_factor: Optional[Sequence[float]] = None
     viscous: float = 0.0
     inertia: float = 0.0
+
+    def __post_init__(self) -> None:
+        _normalise(self)
 
     @classmethod
     def constant(cls, torque: float, **kw: Any) -> "Drive":
@@ -138,6 +164,9 @@ class Brake:
     time: Sequence[float] = (0.0,)
     capacity: Sequence[float] = (0.0,)
 
+    def __post_init__(self) -> None:
+        _normalise(self)
+
     def to_dict(self) -> dict[str, Any]:
         return {"time": [float(t) for t in self.time], "capacity": [float(c) for c in self.capacity]}
 
@@ -175,6 +204,9 @@ class Pulley:
     brake: Optional[Brake] = None
     name: str = ""
 
+    def __post_init__(self) -> None:
+        _normalise(self)
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
@@ -211,6 +243,9 @@ class Idler:
     contact_stiffness: float = 1e8
     contact_damping: float = 0.0
     friction: Optional[Friction] = None
+
+    def __post_init__(self) -> None:
+        _normalise(self)
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -251,6 +286,9 @@ class Belt:
     tension_only: bool = False
     formulation: str = "node_kelvin_voigt"
 
+    def __post_init__(self) -> None:
+        _normalise(self)
+
     @classmethod
     def from_material(
         cls, youngs_modulus: float, width: float, thickness: float, mass_per_length: float, **kw: Any
@@ -280,8 +318,65 @@ class Solver:
     time_step: Optional[float] = None
     time_step_fraction: float = 0.5
 
+    def __post_init__(self) -> None:
+        _normalise(self)
+
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
+
+
+#: Optional large arrays a run can record (``Recording.channels``); every other array of
+#: :class:`beltrs.Result` is always recorded.
+CHANNELS = ("tension", "node_position", "node_velocity")
+
+
+@dataclass
+class Recording:
+    """How a scene is run and what is recorded (the ``[recording]`` table of a scene file,
+    used by ``beltrs run``; :meth:`beltrs.Simulation.run` takes the same settings as
+    arguments, see :meth:`run_kwargs`).
+
+    Attributes:
+        duration: simulated time of the run, s, >= 0. Default 1.
+        interval: sample about every this many seconds (rounded to whole steps), s, > 0.
+            Default None: every ``every`` steps, or every 0.01 s if ``every`` is None too.
+        every: sample every this many steps, >= 1. Give ``interval`` or ``every``, not
+            both. Default None.
+        channels: optional large arrays to record, from ``"tension"``,
+            ``"node_position"``, ``"node_velocity"``. Default: all three.
+        stabilise: relax to static equilibrium (:meth:`beltrs.Simulation.stabilise`)
+            before the run. Default True.
+        stabilise_friction: keep belt friction on while relaxing. Default False.
+    """
+
+    duration: float = 1.0
+    interval: Optional[float] = None
+    every: Optional[int] = None
+    channels: tuple[str, ...] = CHANNELS
+    stabilise: bool = True
+    stabilise_friction: bool = False
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "duration": self.duration,
+            "interval": self.interval,
+            "every": self.every,
+            "channels": list(self.channels),
+            "stabilise": self.stabilise,
+            "stabilise_friction": self.stabilise_friction,
+        }
+
+    def run_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of :meth:`beltrs.Simulation.run` (all but ``duration``)."""
+        kw: dict[str, Any] = {name: name in self.channels for name in CHANNELS}
+        if self.every is not None:
+            kw["record_every"] = self.every
+        else:
+            kw["record_interval"] = 0.01 if self.interval is None else self.interval
+        return kw
 
 
 @dataclass
@@ -294,6 +389,7 @@ class Scene:
         idlers: idlers, any order.
         gravity: m/s^2, acting in -y; 0 compiles no gravity stage. Default 9.81.
         solver: time stepping.
+        recording: how ``beltrs run`` runs the scene and what it records.
     """
 
     belt: Belt = field(default_factory=Belt)
@@ -301,16 +397,59 @@ class Scene:
     idlers: list[Idler] = field(default_factory=list)
     gravity: float = 9.81
     solver: Solver = field(default_factory=Solver)
+    recording: Recording = field(default_factory=Recording)
+
+    def __post_init__(self) -> None:
+        _normalise(self)
 
     def to_dict(self) -> dict[str, Any]:
-        """The plain-data form the engine reads."""
+        """The plain-data form the engine reads (``Scene.from_dict`` reads it back)."""
         return {
             "belt": self.belt.to_dict(),
             "pulleys": [p.to_dict() for p in self.pulleys],
             "idlers": [d.to_dict() for d in self.idlers],
             "gravity": self.gravity,
             "solver": self.solver.to_dict(),
+            "recording": self.recording.to_dict(),
         }
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> "Scene":
+        """Read the plain-data form (``to_dict()``, or a parsed scene file) strictly.
+
+        Absent keys take their defaults; ``None`` is accepted where the default is None.
+
+        Raises:
+            beltrs.SceneError: an unknown key (naming its full path, with a "did you
+                mean" suggestion) or a value of the wrong type (naming the field, the
+                value and the expected type).
+        """
+        return _read_dataclass(cls, data, "")
+
+    def to_toml(self) -> str:
+        """This scene as the text of a TOML scene file (``docs/scene-format.md``)."""
+        from .scene_file import dumps_scene
+
+        return dumps_scene(self)
+
+    @classmethod
+    def from_toml(cls, text: str) -> "Scene":
+        """Read a scene from the text of a TOML scene file (see :func:`beltrs.load_scene`)."""
+        from .scene_file import loads_scene
+
+        return loads_scene(text)
+
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Write this scene to a TOML file; :func:`beltrs.load_scene` reads back an equal
+        scene (floats are written with ``repr``, which round-trips exactly). The file is
+        written to a temporary name and renamed, so a crash never leaves half a file.
+
+        Raises:
+            beltrs.SceneError: a field holds a value of the wrong type.
+        """
+        from .scene_file import save_scene
+
+        save_scene(self, path)
 
     def pulley_index(self, name: str) -> int:
         """Index of the pulley called ``name``."""
@@ -318,3 +457,122 @@ class Scene:
             if p.name == name:
                 return i
         raise KeyError(f"no pulley named {name!r} (names: {[p.name for p in self.pulleys]})")
+
+
+# --- strict reading and normalisation ---------------------------------------------------
+_HINTS: dict[type, dict[str, Any]] = {}
+
+
+def _hints(cls: type) -> dict[str, Any]:
+    """Resolved field types of a scene dataclass, in field order."""
+    h = _HINTS.get(cls)
+    if h is None:
+        resolved = typing.get_type_hints(cls)
+        h = {f.name: resolved[f.name] for f in fields(cls)}
+        _HINTS[cls] = h
+    return h
+
+
+def _join(path: str, key: str) -> str:
+    return key if not path else f"{path}.{key}"
+
+
+def _type_error(path: str, value: Any, expected: str) -> SceneError:
+    return SceneError(f"{path or 'scene'} = {value!r}: expected {expected}")
+
+
+def unknown_key_message(path: str, key: Any, known: Sequence[str]) -> str:
+    """``path = 'key': unknown key, did you mean 'x'? (known keys here: ...)``; the same
+    text (and the same suggestion, difflib's closest match) as the engine's dict reader."""
+    known = sorted(set(known))
+    close = difflib.get_close_matches(str(key), known, n=1)
+    hint = f", did you mean {close[0]!r}?" if close else ""
+    return f"{path} = {key!r}: unknown key{hint} (known keys here: {', '.join(known)})"
+
+
+def _is_sequence(value: Any) -> bool:
+    return not isinstance(value, (str, bytes, Mapping)) and hasattr(value, "__iter__") and hasattr(value, "__len__")
+
+
+def _read_value(tp: Any, value: Any, path: str) -> Any:
+    """``value`` checked against the annotation ``tp`` and converted to its canonical form."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if origin is Union:
+        inner = [a for a in args if a is not type(None)]
+        if value is None and len(inner) < len(args):
+            return None
+        return _read_value(inner[0], value, path)
+    if tp is float:
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise _type_error(path, value, "a number")
+        return float(value)
+    if tp is int:
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise _type_error(path, value, "a whole number")
+        return int(value)
+    if tp is bool:
+        if not isinstance(value, bool):
+            raise _type_error(path, value, "true or false")
+        return value
+    if tp is str:
+        if not isinstance(value, str):
+            raise _type_error(path, value, "a string")
+        return value
+    if origin is tuple and len(args) == 2 and args[1] is not Ellipsis:
+        if not _is_sequence(value) or len(value) != 2:
+            raise _type_error(path, value, "[x, y]")
+        return tuple(_read_value(float, v, f"{path}[{i}]") for i, v in enumerate(value))
+    if origin in (tuple, collections.abc.Sequence) and args:
+        item = args[0]
+        what = "a list of strings" if item is str else "a list of numbers"
+        if not _is_sequence(value):
+            raise _type_error(path, value, what)
+        return tuple(_read_value(item, v, f"{path}[{i}]") for i, v in enumerate(value))
+    if origin is list and args and is_dataclass(args[0]):
+        if not isinstance(value, (list, tuple)):
+            raise _type_error(path, value, "a list of tables")
+        items = [_read_dataclass(args[0], v, f"{path}[{i}]") for i, v in enumerate(value)]
+        if isinstance(value, list) and all(a is b for a, b in zip(items, value)):
+            return value  # already a list of scene objects: keep the caller's list
+        return items
+    if is_dataclass(tp):
+        return _read_dataclass(tp, value, path)
+    raise TypeError(f"{path}: no reader for annotation {tp!r}")  # a bug in this module
+
+
+def _read_dataclass(cls: type, data: Any, path: str) -> Any:
+    if isinstance(data, cls):
+        return data
+    if not isinstance(data, Mapping):
+        raise _type_error(path, data, "a table")
+    hints = _hints(cls)
+    for key in data:
+        if key not in hints:
+            raise SceneError(unknown_key_message(_join(path, str(key)), key, list(hints)))
+    kwargs = {name: _read_value(tp, data[name], _join(path, name)) for name, tp in hints.items() if name in data}
+    return cls(**kwargs)
+
+
+def _normalise(obj: Any) -> None:
+    """Bring each field of a freshly built scene object to its canonical type (see the
+    module docstring); a value of the wrong type is left alone for the engine to report."""
+    for name, tp in _hints(type(obj)).items():
+        value = getattr(obj, name)
+        try:
+            new = _read_value(tp, value, name)
+        except SceneError:
+            continue
+        if new is not value:
+            object.__setattr__(obj, name, new)
+
+
+def field_default(cls: type, name: str) -> Any:
+    """The default value of field ``name`` of a scene dataclass."""
+    for f in fields(cls):
+        if f.name == name:
+            if f.default is not MISSING:
+                return f.default
+            if f.default_factory is not MISSING:
+                return f.default_factory()
+            break
+    raise KeyError(name)

@@ -23,6 +23,7 @@ pub mod record;
 pub mod scene;
 pub mod simulation;
 pub mod state;
+pub mod suggest;
 
 #[cfg(feature = "python")]
 mod python;

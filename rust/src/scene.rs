@@ -377,6 +377,94 @@ impl Default for SolverParams {
     }
 }
 
+/// Optional large arrays a run can record, as named in scene files (`recording.channels`)
+/// and in results. Everything else (time, pulley and idler quantities, energies) is always
+/// recorded.
+pub const RECORDING_CHANNELS: [&str; 3] = ["tension", "node_position", "node_velocity"];
+
+/// How a scene file asks to be run and recorded (the `[recording]` table). The engine
+/// itself does not use it: the command line (`beltrs run`) does. It is read and checked
+/// here so that a scene given in any form is checked by the same rules.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordingParams {
+    /// Simulated time of the run, s, ≥ 0. Default 1.
+    pub duration: f64,
+    /// Sample about every this many seconds (rounded to whole steps), s, > 0. `None`: see
+    /// `every`; if both are `None`, 0.01 s. Default `None`.
+    pub interval: Option<f64>,
+    /// Sample every this many steps, ≥ 1. Give `interval` or `every`, not both. Default
+    /// `None`.
+    pub every: Option<u64>,
+    /// Optional large arrays to record, from [`RECORDING_CHANNELS`]. Default: all of them.
+    pub channels: Vec<String>,
+    /// Relax to static equilibrium before the run. Default true.
+    pub stabilise: bool,
+    /// Keep belt friction on while relaxing. Default false.
+    pub stabilise_friction: bool,
+}
+
+impl Default for RecordingParams {
+    fn default() -> Self {
+        RecordingParams {
+            duration: 1.0,
+            interval: None,
+            every: None,
+            channels: RECORDING_CHANNELS.iter().map(|s| s.to_string()).collect(),
+            stabilise: true,
+            stabilise_friction: false,
+        }
+    }
+}
+
+impl RecordingParams {
+    /// Check every field: finite non-negative duration, positive interval, `every` ≥ 1, not
+    /// both `interval` and `every`, known and distinct channel names.
+    pub fn validate(&self) -> BeltResult<()> {
+        check_non_negative("recording.duration", self.duration)?;
+        if let Some(interval) = self.interval {
+            check_positive("recording.interval", interval)?;
+        }
+        if let Some(every) = self.every {
+            if every == 0 {
+                return Err(BeltError::invalid("recording.every", every, "must be ≥ 1"));
+            }
+            if let Some(interval) = self.interval {
+                return Err(BeltError::invalid(
+                    "recording.every",
+                    every,
+                    format!(
+                        "give recording.interval (here {interval}) or recording.every, not both"
+                    ),
+                ));
+            }
+        }
+        for (i, c) in self.channels.iter().enumerate() {
+            if !RECORDING_CHANNELS.contains(&c.as_str()) {
+                let hint = match crate::suggest::close_match(c, RECORDING_CHANNELS) {
+                    Some(s) => format!(", did you mean \"{s}\"?"),
+                    None => String::new(),
+                };
+                return Err(BeltError::invalid(
+                    format!("recording.channels[{i}]"),
+                    format!("{c:?}"),
+                    format!(
+                        "unknown channel{hint} (known: {})",
+                        RECORDING_CHANNELS.join(", ")
+                    ),
+                ));
+            }
+            if self.channels[..i].contains(c) {
+                return Err(BeltError::invalid(
+                    format!("recording.channels[{i}]"),
+                    format!("{c:?}"),
+                    "listed twice",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A whole scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {

@@ -5,3 +5,4 @@ mod common;
 mod case_h_statics;
 mod friction_contact;
 mod kernels;
+mod recording_params;

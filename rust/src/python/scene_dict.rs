@@ -3,9 +3,10 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, PulleySpec, Scene,
-    SolverParams, Table, TakeupSpec, Wrap,
+    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, PulleySpec,
+    RecordingParams, Scene, SolverParams, Table, TakeupSpec, Wrap,
 };
+use crate::suggest::unknown_key_rule;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::collections::HashSet;
@@ -134,6 +135,30 @@ impl<'py> Reader<'py> {
         }
     }
 
+    fn strings(&mut self, key: &str) -> BeltResult<Option<Vec<String>>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(v) => {
+                let field = self.field(key);
+                if v.is_instance_of::<pyo3::types::PyString>() {
+                    return Err(type_error(&field, &v, "a list of strings"));
+                }
+                let list = v
+                    .try_iter()
+                    .map_err(|_| type_error(&field, &v, "a list of strings"))?;
+                let mut out = Vec::new();
+                for (i, item) in list.enumerate() {
+                    let item = item.map_err(|_| type_error(&field, &v, "a list of strings"))?;
+                    out.push(
+                        item.extract::<String>()
+                            .map_err(|_| type_error(&format!("{field}[{i}]"), &item, "a string"))?,
+                    );
+                }
+                Ok(Some(out))
+            }
+        }
+    }
+
     fn vec2(&mut self, key: &str, default: [f64; 2]) -> BeltResult<[f64; 2]> {
         match self.floats(key)? {
             None => Ok(default),
@@ -170,18 +195,15 @@ impl<'py> Reader<'py> {
         }
     }
 
-    /// Error on any key that was not read.
+    /// Error on any key that was not read, suggesting the closest known key.
     fn finish(self) -> BeltResult<()> {
         for key in self.dict.keys() {
             let name = key.to_string();
             if !self.used.contains(&name) {
-                let mut known: Vec<&String> = self.used.iter().collect();
-                known.sort();
-                let known: Vec<&str> = known.iter().map(|s| s.as_str()).collect();
                 return Err(BeltError::invalid(
                     self.field(&name),
                     key.repr().map(|r| r.to_string()).unwrap_or(name.clone()),
-                    format!("unknown key (known keys here: {})", known.join(", ")),
+                    unknown_key_rule(&name, self.used.iter().map(|s| s.as_str())),
                 ));
             }
         }
@@ -194,16 +216,29 @@ fn friction(r: &mut Reader<'_>) -> BeltResult<FrictionModel> {
         return Ok(FrictionModel::None);
     };
     let model = f.string("model", "stick_force")?;
+    let mu_s = f.f64("static", 0.0)?;
+    let mu_k = f.opt_f64("kinetic")?;
     let out = match model.as_str() {
-        "none" => FrictionModel::None,
-        "stick_force" => {
-            let mu_s = f.f64("static", 0.0)?;
-            let mu_k = f.f64("kinetic", mu_s)?;
-            FrictionModel::StickForce {
-                static_coefficient: mu_s,
-                kinetic_coefficient: mu_k,
+        "none" => {
+            // Coefficients with no friction model would be silently ignored: refuse them.
+            if mu_s != 0.0 || mu_k.is_some_and(|k| k != 0.0) {
+                let (key, value) = if mu_s != 0.0 {
+                    ("static", mu_s)
+                } else {
+                    ("kinetic", mu_k.unwrap_or(0.0))
+                };
+                return Err(BeltError::invalid(
+                    f.field(key),
+                    value,
+                    "friction model \"none\" takes no coefficients (use \"stick_force\")",
+                ));
             }
+            FrictionModel::None
         }
+        "stick_force" => FrictionModel::StickForce {
+            static_coefficient: mu_s,
+            kinetic_coefficient: mu_k.unwrap_or(mu_s),
+        },
         other => {
             return Err(BeltError::invalid(
                 f.field("model"),
@@ -373,6 +408,21 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
             spec
         }
     };
+    // Run and recording settings are not part of the engine's scene, but they are checked
+    // here by the same strict rules, so that nothing in a scene goes unchecked.
+    if let Some(mut r) = root.sub("recording")? {
+        let rd = RecordingParams::default();
+        let spec = RecordingParams {
+            duration: r.f64("duration", rd.duration)?,
+            interval: r.opt_f64("interval")?,
+            every: r.opt_usize("every")?.map(|n| n as u64),
+            channels: r.strings("channels")?.unwrap_or(rd.channels),
+            stabilise: r.bool("stabilise", rd.stabilise)?,
+            stabilise_friction: r.bool("stabilise_friction", rd.stabilise_friction)?,
+        };
+        r.finish()?;
+        spec.validate()?;
+    }
     root.finish()?;
     Ok(Scene {
         belt,
