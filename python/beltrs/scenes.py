@@ -155,9 +155,17 @@ def idler_conveyor(
     def row(y: float, pitch: float) -> list[Idler]:
         count = math.floor((length - 2 * r) / pitch)
         x0 = 0.5 * (length - (count - 1) * pitch)  # centred between the pulleys
-        return [Idler(center=(round(x0 + i * pitch, 9), y),  # round: no 1.3999999999999986 in files radius=roll, contact_stiffness=1e8, contact_damping=1000.0,
-                      friction=idler_friction)
-                for i in range(count)]
+        # round(): keep idler positions like 1.4 exact in scene files (no 1.3999999999999986).
+        return [
+            Idler(
+                center=(round(x0 + i * pitch, 9), y),
+                radius=roll,
+                contact_stiffness=1e8,
+                contact_damping=1000.0,
+                friction=idler_friction,
+            )
+            for i in range(count)
+        ]
 
     idlers = row(r - roll, carry_spacing) + row(-r - roll, return_spacing)
     return Scene(
