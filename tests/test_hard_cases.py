@@ -359,3 +359,37 @@ def test_friction_at_rest_holds_a_load(load, holds):
         # Beyond the capstan capacity the lower pulley spins inside the belt.
         assert lower_omega.max() > 10.0
     assert_energy_bounded(res)
+
+
+# --- 6. Takeup at its stops ------------------------------------------------------------
+
+
+def test_takeup_slams_into_its_stop_during_a_start():
+    # A hard start (1 MN·m held, within the drive's capstan capacity) stretches the tight
+    # strand and pulls the takeup down at ~0.3 m/s; a hard stop 5 cm below its static
+    # position catches it.
+    def start(travel_max):
+        scene = beltrs.scenes.hustrulid_loop(89, friction=Friction(static=0.5, kinetic=0.4))
+        scene.pulleys[1].takeup.travel_max = travel_max
+        scene.pulleys[0].drive = Drive.constant(1e6)
+        sim = beltrs.Simulation(scene)
+        sim.stabilise()
+        return sim, sim.run(3.0, record_every=1, tension=False, node_position=False)
+
+    _, free = start(np.inf)
+    stop = 3.40  # m of travel from the placement; static equilibrium is at 3.347 m
+    _, res = start(stop)
+    static = res.takeup_travel[0, 1]
+    assert stop - static == pytest.approx(0.053, abs=0.005)
+    assert free.takeup_travel[:, 1].max() > stop + 0.1  # unblocked, it would pass the stop
+    travel = res.takeup_travel[:, 1]
+    # The stop is hard: the takeup reaches it exactly and never passes it.
+    assert travel.max() == stop
+    assert np.all(travel <= stop)
+    hit = int(np.argmax(travel == stop))
+    # It arrived moving (slammed, not crept): faster than 0.1 m/s (unblocked it passes
+    # that point at 0.26 m/s).
+    assert (travel[hit - 1] - travel[hit - 2]) / res.dt > 0.1
+    # The impact is inelastic (the stop absorbs the takeup's kinetic energy); nothing
+    # gains energy and the run stays finite.
+    assert_energy_bounded(res)
