@@ -174,3 +174,65 @@ def idler_conveyor(
         idlers=idlers,
         recording=Recording(duration=8.0, interval=0.01, channels=("tension", "node_position")),
     )
+
+
+def concave_conveyor(
+    *,
+    flat: float = 30.0,
+    incline_length: float = 40.0,
+    incline: float = math.radians(5.0),
+    curve_radius: float = 100.0,
+    pulley_radius: float = 1.0,
+    carry_pitch: float = 1.5,
+    return_pitch: float = 4.0,
+    counterweight: float = 1000.0,
+    drive: Optional[Drive] = None,
+) -> Scene:
+    """A conveyor whose carry strand runs level, then up a concave vertical curve onto an
+    incline: the layout where a fast start lifts the belt off its idlers.
+
+    Tail pulley ("tail") at (0, 0) on a horizontal gravity takeup pulled in -x (the strands
+    carry counterweight x g / 2 each); the carry strand leaves its top at (0, R), runs
+    ``flat`` m level, turns up through a circular curve of ``curve_radius`` onto an incline
+    of ``incline`` rad, ``incline_length`` m long (vertex to vertex), and wraps the head
+    pulley ("head"), which is driven clockwise. Carry idlers follow that profile every
+    ``carry_pitch`` m; return idlers follow it one pulley diameter lower every
+    ``return_pitch`` m (built with :func:`beltrs.layout.idlers_along`). In static
+    equilibrium the belt lies on the curve's idlers while its tension T < rho*g*R_c*cos(beta)
+    (about 19 kN here); a start that raises it beyond lifts the belt off them.
+
+    Belt: EA = 10 MN, 20 kg/m, EI = 50 N*m^2, 5 % damping, elements of 30 degrees of arc on
+    the pulleys. Penalty contact 1e8 N/m; the idlers have 1000 N*s/m contact damping and
+    belt friction 0.3 (the rolls turn); the pulleys mu_s 0.35, mu_k 0.3.
+
+    Args:
+        flat: level carry length before the curve's vertex, m. Default 30.
+        incline_length: from the curve's vertex to the head tangent point, m. Default 40.
+        incline: incline angle, rad. Default 5 degrees. The straight chord between the
+            pulleys (the initial placement) must lie less than a pulley diameter above the
+            profile, or the return strand starts above the carry idlers.
+        curve_radius: concave curve radius, m. Default 100.
+        pulley_radius: both pulleys, m. Default 1.
+        carry_pitch, return_pitch: idler pitches, m. Defaults 1.5 and 4.
+        counterweight: takeup counterweight, kg. Default 1000.
+        drive: head drive (clockwise torque is negative). Default none.
+    """
+    from .layout import Profile, idlers_along
+
+    r = pulley_radius
+    end = (flat + incline_length * math.cos(incline), r + incline_length * math.sin(incline))
+    carry = Profile([(0.0, r), (flat, r), end], curve_radii=[curve_radius])
+    head = (end[0] + r * math.sin(incline), end[1] - r * math.cos(incline))
+    friction = Friction(static=0.35, kinetic=0.3)
+    common = dict(radius=r, contact_stiffness=1e8, friction=friction)
+    pulleys = [
+        Pulley(name="tail", center=(0.0, 0.0), mass=500.0,
+               takeup=Takeup(counterweight=counterweight, direction=(-1.0, 0.0)), **common),  # type: ignore[arg-type]
+        Pulley(name="head", center=(round(head[0], 9), round(head[1], 9)), mass=800.0, drive=drive, **common),  # type: ignore[arg-type]
+    ]
+    rolls = dict(contact_stiffness=1e8, contact_damping=1000.0, friction=Friction(static=0.3, kinetic=0.3))
+    clear = 2.0 * r  # keep idlers off the pulleys
+    idlers = idlers_along(carry, carry_pitch, start=clear, end=carry.length - clear, **rolls)
+    idlers += idlers_along(carry, return_pitch, offset=-2 * r, start=clear, end=carry.length - clear, **rolls)
+    belt = Belt(axial_stiffness=1e7, mass_per_length=20.0, bending_stiffness=50.0, damping_ratio=0.05)
+    return Scene(belt=belt, pulleys=pulleys, idlers=idlers)

@@ -180,11 +180,31 @@ pub struct IdlerBody {
     pub damping: f64,
 }
 
+/// The element an idler starts tracking: the nearest element lying above the roll (its
+/// closest point higher than the roll centre), since idlers carry the belt against gravity;
+/// the nearest element of all if none lies above. Nearest alone can pick the other strand:
+/// a carry roll between a sagging carry strand and the return strand just below it would
+/// track the return strand and let the carry belt fall through it.
+pub fn supported_element(center: V2, x: &[V2]) -> usize {
+    let n = x.len();
+    let key = |e: usize| {
+        let (dist, _, closest) = segment_distance(center, x[e], x[(e + 1) % n]);
+        (closest.y <= center.y, dist)
+    };
+    (0..n)
+        .min_by(|&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+        })
+        .unwrap_or(0)
+}
+
 /// Centre-line contact with one idler (thesis eq. 4.95–4.102). The idler tracks the nearest
 /// element by stepping to a neighbour while that is nearer, so the search is local. The
 /// closest point on the element splits the force by the lever rule: (1 − γ) to the first
 /// node and γ to the second (the thesis text swaps d and e in eq. 4.100–4.101; its code has
-/// them right).
+/// them right). The neighbours of the tracked element press too when they penetrate (a node
+/// over the roll); the returned contact is the deepest part with the summed normal force.
 pub fn idler_contact(
     element: &mut usize,
     x: &[V2],
@@ -212,30 +232,39 @@ pub fn idler_contact(
         }
     }
     *element = e;
-    let (dist, gamma, closest) = best;
-    if dist >= body.radius {
-        return IdlerContact::default();
+    // The tracked element and both neighbours may press on the roll. Near a node the belt
+    // polygon kinks over the roll and two elements penetrate it; taking only the nearest
+    // would flip the force between their two normals as the node passes (and chatter in
+    // statics), while the sum turns smoothly from one to the other.
+    let mut out = IdlerContact::default();
+    for k in [(e + n - 1) % n, e, (e + 1) % n] {
+        let (dist, gamma, closest) = if k == e { best } else { dist_of(k) };
+        if dist >= body.radius {
+            continue;
+        }
+        let j = (k + 1) % n;
+        let normal = if dist > 0.0 {
+            (closest - body.center) / dist
+        } else {
+            // The centre line passes through the idler centre: push along the element normal.
+            let d = x[j] - x[k];
+            V2::new(-d.y, d.x).normalize()
+        };
+        let depth = body.radius - dist;
+        let vc = v[k] * (1.0 - gamma) + v[j] * gamma;
+        let approach = -vc.dot(&normal);
+        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+        force[k] += normal * (fn_ * (1.0 - gamma));
+        force[j] += normal * (fn_ * gamma);
+        // The deepest part is the contact point for friction; it carries the total force.
+        if !out.active || depth > out.penetration {
+            out.element = k;
+            out.gamma = gamma;
+            out.normal = normal;
+            out.penetration = depth;
+        }
+        out.active = true;
+        out.normal_force += fn_;
     }
-    let j = (e + 1) % n;
-    let normal = if dist > 0.0 {
-        (closest - body.center) / dist
-    } else {
-        // The centre line passes through the idler centre: push along the element normal.
-        let d = x[j] - x[e];
-        V2::new(-d.y, d.x).normalize()
-    };
-    let depth = body.radius - dist;
-    let vc = v[e] * (1.0 - gamma) + v[j] * gamma;
-    let approach = -vc.dot(&normal);
-    let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
-    force[e] += normal * (fn_ * (1.0 - gamma));
-    force[j] += normal * (fn_ * gamma);
-    IdlerContact {
-        active: true,
-        element: e,
-        gamma,
-        normal,
-        normal_force: fn_,
-        penetration: depth,
-    }
+    out
 }

@@ -159,6 +159,9 @@ pub struct Model {
     pub node_stiffness_bound: Vec<f64>,
     /// Same bound for each takeup's translation, N/m (0 for fixed pulleys).
     pub takeup_stiffness_bound: Vec<f64>,
+    /// Smallest idler radius, pulley radius or element length, m: the static relaxation
+    /// moves no node by more than a quarter of it per step.
+    pub relaxation_move_limit: f64,
 }
 
 impl Model {
@@ -307,7 +310,15 @@ impl Model {
             dt_cause: String::new(),
             node_stiffness_bound: Vec::new(),
             takeup_stiffness_bound: Vec::new(),
+            relaxation_move_limit: 0.0,
         };
+        model.relaxation_move_limit = model
+            .idlers
+            .iter()
+            .map(|d| d.radius)
+            .chain(model.pulleys.iter().map(|p| p.radius))
+            .chain(model.rest_length.iter().copied())
+            .fold(f64::INFINITY, f64::min);
         model.estimate_time_step()?;
         Ok(model)
     }

@@ -961,6 +961,7 @@ impl Simulation {
             // reset stalls the slow ones, so each degree of freedom is reset at its own
             // kinetic-energy peak (where its power F·v turns negative).
             resets += self.reset_at_local_peaks();
+            self.limit_relaxation_move();
             self.integrate()?;
         }
         Ok(StabiliseReport {
@@ -1056,6 +1057,7 @@ impl Simulation {
                 alpha = ALPHA_START;
             }
             self.model.dt = dt;
+            self.limit_relaxation_move();
             let step = self.integrate();
             self.model.dt = dt0;
             if let Err(e) = step {
@@ -1071,6 +1073,30 @@ impl Simulation {
             converged: false,
             resets,
         })
+    }
+
+    /// Relaxation moves are fictitious and can build up speed; a node that moved further
+    /// than a quarter of the smallest idler radius, pulley radius or element length in one
+    /// step could tunnel through a roll (centre-line contact only sees penetration). Scale
+    /// the node's velocity so that its next move (after the coming force update) stays
+    /// within that bound.
+    fn limit_relaxation_move(&mut self) {
+        let m = &self.model;
+        let cap = 0.25 * m.relaxation_move_limit;
+        let dt = m.dt;
+        let s = &mut self.state;
+        for ((v, f), im) in s
+            .velocity
+            .iter_mut()
+            .zip(&self.scratch.force)
+            .zip(&self.inertia.inv_mass)
+        {
+            let next = *v + f * (dt * im);
+            let step = next.norm() * dt;
+            if step > cap {
+                *v = next * (cap / step) - f * (dt * im);
+            }
+        }
     }
 
     /// FIRE works in mass-weighted coordinates (p = √m̃·v, g = F/√m̃), so that mixing the

@@ -47,29 +47,12 @@ impl State {
     pub fn initial(model: &Model) -> State {
         let n = model.nodes;
         let position = model.initial_positions.clone();
+        // One global search at start-up; afterwards each idler tracks its element along
+        // the strand it supports.
         let idler_element = model
             .idlers
             .iter()
-            .map(|d| {
-                // One global search at start-up; afterwards each idler tracks its element.
-                (0..n)
-                    .min_by(|&a, &b| {
-                        let da = crate::contact::segment_distance(
-                            d.center,
-                            position[a],
-                            position[(a + 1) % n],
-                        )
-                        .0;
-                        let db = crate::contact::segment_distance(
-                            d.center,
-                            position[b],
-                            position[(b + 1) % n],
-                        )
-                        .0;
-                        da.total_cmp(&db)
-                    })
-                    .unwrap_or(0)
-            })
+            .map(|d| crate::contact::supported_element(d.center, &position))
             .collect();
         State {
             time: 0.0,

@@ -1,0 +1,191 @@
+"""Conveyor layout helpers: a profile of straights joined by circular curves, and idlers
+placed along it. SI units (m, rad).
+
+A profile is a polyline of vertices with an optional curve radius at each interior vertex
+(the way a conveyor's vertical alignment is drawn): the straights are joined by circular
+arcs tangent to both, like a fillet. :func:`idlers_along` puts idler rolls under (or over)
+such a profile at a fixed pitch, e.g. carry idlers over a concave curve between two inclined
+straights, where a fast start can lift the belt off.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from . import _beltrs
+from .scene import Idler
+
+__all__ = ["Profile", "idlers_along"]
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """A straight (radius 0) or an arc of a profile, by arc length."""
+
+    start: np.ndarray  # point, m
+    direction: np.ndarray  # unit tangent at the start
+    length: float  # m
+    curvature: float  # 1/m, positive turning left (counter-clockwise)
+
+
+def _error(field: str, value: Any, rule: str) -> _beltrs.SceneError:
+    return _beltrs.SceneError(f"{field} = {value!r}: {rule}")
+
+
+class Profile:
+    """Straights through ``vertices`` joined by circular curves.
+
+    Args:
+        vertices: points (x, y), m, at least two; consecutive points distinct.
+        curve_radii: radius of the curve at each interior vertex, m (0 = a sharp corner).
+            Default all 0. A curve must fit: its tangent length R·tan(φ/2), φ the turn at
+            the vertex, may not overrun the neighbouring straights (shared with the next
+            curve).
+
+    Raises:
+        beltrs.SceneError: naming the offending vertex or radius and the rule.
+    """
+
+    def __init__(self, vertices: Sequence[Sequence[float]], curve_radii: Optional[Sequence[float]] = None):
+        v = np.asarray(vertices, dtype=float)
+        if v.ndim != 2 or v.shape[1] != 2 or len(v) < 2:
+            raise _error("vertices", vertices, "need at least two (x, y) points")
+        if not np.all(np.isfinite(v)):
+            raise _error("vertices", vertices, "must be finite")
+        n = len(v)
+        radii = np.zeros(n - 2) if curve_radii is None else np.asarray(curve_radii, dtype=float)
+        if radii.shape != (n - 2,):
+            raise _error("curve_radii", curve_radii, f"need one radius per interior vertex ({n - 2})")
+        for i, r in enumerate(radii):
+            if not (math.isfinite(r) and r >= 0):
+                raise _error(f"curve_radii[{i}]", float(r), "must be finite and >= 0 (m)")
+        seg = np.diff(v, axis=0)
+        lengths = np.hypot(seg[:, 0], seg[:, 1])
+        for i, length in enumerate(lengths):
+            if not length > 0:
+                raise _error(f"vertices[{i + 1}]", tuple(v[i + 1]), "repeats the previous vertex")
+        dirs = seg / lengths[:, None]
+        # Tangent length of the curve at each interior vertex.
+        tangent = np.zeros(n)
+        turn = np.zeros(n)
+        for i in range(1, n - 1):
+            a, b = dirs[i - 1], dirs[i]
+            phi = math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b))
+            turn[i] = phi
+            tangent[i] = radii[i - 1] * math.tan(abs(phi) / 2)
+        for i in range(n - 1):
+            if tangent[i] + tangent[i + 1] > lengths[i] * (1 + 1e-12):
+                k = i if i + 1 <= n - 2 else i - 1  # the curve at vertex i + 1, else at i
+                raise _error(
+                    f"curve_radii[{k}]",
+                    float(radii[k]),
+                    f"the curves at vertices {i} and {i + 1} need {tangent[i] + tangent[i + 1]:.6g} m "
+                    f"of the {lengths[i]:.6g} m straight between them",
+                )
+        pieces: list[_Piece] = []
+        for i in range(n - 1):
+            start = v[i] + dirs[i] * tangent[i]
+            straight = lengths[i] - tangent[i] - tangent[i + 1]
+            if straight > 0:
+                pieces.append(_Piece(start, dirs[i], float(straight), 0.0))
+            j = i + 1
+            if j < n - 1 and tangent[j] > 0:
+                r = radii[j - 1]
+                pieces.append(_Piece(v[j] - dirs[i] * tangent[j], dirs[i], float(r * abs(turn[j])), math.copysign(1 / r, turn[j])))
+        self.vertices = v
+        self.curve_radii = radii
+        self._pieces = pieces
+        self.length = float(sum(p.length for p in pieces))
+        """Arc length of the profile, m."""
+
+    def point(self, s: float) -> tuple[np.ndarray, np.ndarray]:
+        """Point and unit tangent at arc length ``s`` (m, clipped to [0, length])."""
+        s = min(max(float(s), 0.0), self.length)
+        for p in self._pieces:
+            if s <= p.length or p is self._pieces[-1]:
+                return _along(p, min(s, p.length))
+            s -= p.length
+        raise AssertionError("unreachable")
+
+    def curvature(self, s: float) -> float:
+        """Signed curvature at arc length ``s``, 1/m (positive: turning counter-clockwise)."""
+        s = min(max(float(s), 0.0), self.length)
+        for p in self._pieces:
+            if s <= p.length:
+                return p.curvature
+            s -= p.length
+        return self._pieces[-1].curvature
+
+
+def _along(p: _Piece, s: float) -> tuple[np.ndarray, np.ndarray]:
+    if p.curvature == 0.0:
+        return p.start + p.direction * s, p.direction
+    k = p.curvature
+    left = np.array([-p.direction[1], p.direction[0]])
+    theta = k * s
+    centre = p.start + left / k
+    rel = p.start - centre
+    c, sn = math.cos(theta), math.sin(theta)
+    point = centre + np.array([c * rel[0] - sn * rel[1], sn * rel[0] + c * rel[1]])
+    d = np.array([c * p.direction[0] - sn * p.direction[1], sn * p.direction[0] + c * p.direction[1]])
+    return point, d
+
+
+def idlers_along(
+    profile: Profile,
+    pitch: float,
+    *,
+    side: str = "right",
+    offset: float = 0.0,
+    start: Optional[float] = None,
+    end: Optional[float] = None,
+    **idler: Any,
+) -> list[Idler]:
+    """Idler rolls along ``profile`` every ``pitch`` metres of arc length.
+
+    The belt centre line is meant to run along the profile shifted by ``offset`` to its
+    left (m; negative shifts right, e.g. the return strand one pulley diameter below the
+    carry strand's profile). Each roll touches that line from ``side``: ``"right"`` of the
+    direction of travel along the vertices (under a strand running left to right) or
+    ``"left"``; its centre is one roll radius off the line.
+
+    Args:
+        profile: the profile.
+        pitch: idler pitch along the profile, m, > 0.
+        side: ``"right"`` (default) or ``"left"``.
+        offset: shift of the belt line to the left of the profile, m. Default 0.
+        start: arc length of the first idler, m. Default pitch/2.
+        end: no idler beyond this arc length, m. Default the profile length − pitch/2.
+        **idler: further :class:`beltrs.Idler` fields (``radius`` m, default 0.0635;
+            ``contact_stiffness``, ``contact_damping``, ``inertia``, ``friction``).
+
+    Returns:
+        list of :class:`beltrs.Idler`.
+
+    Raises:
+        beltrs.SceneError: a bad pitch, side or range, named with its value.
+    """
+    if not (math.isfinite(pitch) and pitch > 0):
+        raise _error("pitch", pitch, "must be a finite number > 0 (m)")
+    if side not in ("right", "left"):
+        raise _error("side", side, 'must be "right" or "left"')
+    if not math.isfinite(offset):
+        raise _error("offset", offset, "must be finite (m)")
+    s0 = 0.5 * pitch if start is None else float(start)
+    s1 = profile.length - 0.5 * pitch if end is None else float(end)
+    if not (0 <= s0 <= profile.length) or not (s0 <= s1 <= profile.length):
+        raise _error("start, end", (s0, s1), f"must satisfy 0 <= start <= end <= {profile.length:.6g} (m)")
+    roll = float(idler.get("radius", Idler().radius))
+    sign = -1.0 if side == "right" else 1.0
+    out = []
+    count = int(math.floor((s1 - s0) / pitch + 1e-9)) + 1
+    for k in range(count):
+        p, d = profile.point(s0 + k * pitch)
+        left = np.array([-d[1], d[0]])
+        c = p + left * (offset + sign * roll)
+        out.append(Idler(center=(round(float(c[0]), 9), round(float(c[1]), 9)), **idler))
+    return out
