@@ -19,6 +19,7 @@ import pathlib
 import platform
 import sys
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -35,6 +36,8 @@ ROOT = HERE.parent
 H = beltrs.scenes.hustrulid_loop
 KUBAS_DURATION = 0.7  # s: torque ramp to 0.3 s, then 0.4 s of steady running
 KUBAS_WINDOW = 0.2  # s averaged at the end
+# Case K starts from rest at preload: 1e-4 of the largest tension (0.06 N) is static enough.
+K_STAB = {"tolerance": 1e-4, "max_steps": 300_000}
 
 
 def plot(tables: list[tuple[str, study.StudyTable]], path: pathlib.Path, title: str, scale: float = 1.0,
@@ -100,10 +103,12 @@ def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
     if not args.quick:
         run("tension_A", H, study.hustrulid_tension("A"), values=elements)
         run("tension_C", H, study.hustrulid_tension("C"), values=elements)
-        run("takeup_contact", lambda **kw: H(200, **kw), study.takeup_displacement(), "contact_stiffness",
-            [2e6, 2e7, 2e8, 2e9])
-        run("tension_contact", lambda **kw: H(200, **kw), study.hustrulid_tension("A"), "contact_stiffness",
-            [2e6, 2e7, 2e8, 2e9])
+        # Contact ladders against Richardson references (the contact part of the error alone).
+        # 6e8 N/m and stiffer do not relax in 3e5 steps at 200 elements (docs/engine.md).
+        run("takeup_contact", lambda **kw: H(200, **kw), study.takeup_displacement(exact=math.nan),
+            "contact_stiffness", [2e6, 2e7, 2e8])
+        run("tension_contact", lambda **kw: H(200, **kw), replace(study.hustrulid_tension("A"), exact=None),
+            "contact_stiffness", [2e6, 2e7, 2e8])
         wave = study.hustrulid_wave_speed_quantity()
         run("wave_elements", H, wave, values=[100, 200, 400, 800])
         run("wave_dt", lambda **kw: H(200, **kw), wave, "time_step_fraction", [0.9, 0.5, 0.25, 0.125])
@@ -115,9 +120,10 @@ def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
         run("freq_elements", H, cw, values=[100, 200, 400])
         run("freq_dt", H, cw, "time_step_fraction", [0.9, 0.45, 0.225])
         diff, sl = kubas_quantities()
-        run("kubas_diff", kubas_drive, diff, values=[75, 150, 300])
-        run("kubas_slip", kubas_drive, sl, values=[75, 150, 300])
-        run("kubas_contact", lambda **kw: kubas_drive(150, **kw), sl, "contact_stiffness", [1e6, 1e7, 1e8])
+        run("kubas_diff", kubas_drive, diff, values=[75, 150, 300], stabilise_options=K_STAB)
+        run("kubas_slip", kubas_drive, sl, values=[75, 150, 300], stabilise_options=K_STAB)
+        run("kubas_contact", lambda **kw: kubas_drive(150, **kw), sl, "contact_stiffness", [3e6, 1e7, 3e7],
+            stabilise_options=K_STAB)
 
     # --- plots -------------------------------------------------------------------------
     plot([("elements", T["takeup_elements"])] + ([("contact stiffness, 200 el.", T["takeup_contact"])]
@@ -177,8 +183,8 @@ def write_page(path: pathlib.Path, T: dict[str, study.StudyTable], quick: bool, 
     add(t.to_markdown())
     add("")
     if "takeup_contact" in T:
-        add("Contact stiffness at 200 elements (N/m; errors against the exact answer, which includes the "
-            "mesh error of 200 elements, 0.040 m):")
+        add("Contact stiffness at 200 elements (N/m; errors against the Richardson limit of infinitely "
+            "stiff contact, i.e. the contact part of the error alone):")
         add("")
         add(T["takeup_contact"].to_markdown())
         add("")
@@ -289,8 +295,9 @@ def conclusions(T: dict[str, study.StudyTable]) -> str:
         "",
         "**Where contact stiffness stops mattering.** Penalty contact sinks each node by f/k; the answer "
         "moves as 1/k (order ≈ 1 in the compliance). For the case H takeup displacement the change from "
-        f"2e8 to 2e9 N/m is {abs(tc.value[-1] - tc.value[-2]) * 1e3:.2f} mm, against a 200-element mesh error "
-        f"of {te.error[1] * 1e3:.0f} mm: above about 2e7 N/m (case H) the contact stiffness no longer matters "
+        f"2e7 to 2e8 N/m is {abs(tc.value[-1] - tc.value[-2]) * 1e3:.1f} mm and the contact error left at 2e8 "
+        f"is {tc.error[-1] * 1e3:.2f} mm, against a 200-element mesh error of {te.error[1] * 1e3:.0f} mm: "
+        "from about 2e7 N/m up (case H) the contact stiffness no longer matters "
         "next to the mesh, and stiffer contact only costs (it shrinks the stable step and, more, slows "
         "the static relaxation).",
         "",
