@@ -74,7 +74,12 @@ def kubas_drive(
     scene = Scene(
         belt=belt,
         pulleys=[
-            Pulley(name="drive", center=(0.0, 0.0), drive=Drive(time=[0.0, KUBAS_RAMP], torque=[0.0, KUBAS_TORQUE]), **common),  # type: ignore[arg-type]
+            Pulley(
+                name="drive",
+                center=(0.0, 0.0),
+                drive=Drive(time=[0.0, KUBAS_RAMP], torque=[0.0, KUBAS_TORQUE]),
+                **common,  # type: ignore[arg-type]
+            ),
             Pulley(
                 name="driven",
                 center=(KUBAS_CENTRES, 0.0),

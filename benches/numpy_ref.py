@@ -110,12 +110,12 @@ class NumpyBelt:
         f[:, 1] -= self.mass * self.gravity
         # Axial: T = k (l - l0) + c dl/dt along each element.
         d = np.roll(x, -1, axis=0) - x
-        l = np.hypot(d[:, 0], d[:, 1])
-        t = self.k * (l - self.l0)
+        length = np.hypot(d[:, 0], d[:, 1])
+        t = self.k * (length - self.l0)
         if np.any(self.c):
-            rate = np.einsum("ij,ij->i", np.roll(v, -1, axis=0) - v, d) / l
+            rate = np.einsum("ij,ij->i", np.roll(v, -1, axis=0) - v, d) / length
             t = t + self.c * rate
-        fe = d * (t / l)[:, None]
+        fe = d * (t / length)[:, None]
         f += fe - np.roll(fe, 1, axis=0)
         # Bending: theta_j = angle from element j-1 to element j.
         if np.any(self.kb):

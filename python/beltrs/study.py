@@ -50,7 +50,7 @@ import numpy as np
 from . import _beltrs
 from .analysis import arrival_time, hustrulid_tangent_tensions, hustrulid_wave_speed, oscillation
 from .analytic import axial_wave_speed, two_pulley_takeup_statics
-from .scene import Drive, Scene
+from .scene import Drive, Friction, Scene
 from .simulation import Simulation
 
 __all__ = [
@@ -148,7 +148,10 @@ def hustrulid_tension(point: str = "A") -> Quantity:
     return Quantity(f"tension at {point.upper()}", "N", measure, exact=exact)
 
 
-def _scenario(setup: Optional[Callable[[Simulation], Any]], duration: float, **record: Any) -> Callable[[Simulation], Any]:
+Setup = Optional[Callable[[Simulation], Any]]
+
+
+def _scenario(setup: Setup, duration: float, **record: Any) -> Callable[[Simulation], Any]:
     def run(sim: Simulation) -> Any:
         if setup is not None:
             setup(sim)
@@ -163,7 +166,7 @@ def _result(sim: Simulation) -> Any:
     return sim.last_result
 
 
-def peak_tension(duration: float, setup: Optional[Callable[[Simulation], Any]] = None, exact: Optional[float] = None) -> Quantity:
+def peak_tension(duration: float, setup: Setup = None, exact: Optional[float] = None) -> Quantity:
     """Largest element tension over a run of ``duration`` s (recorded every step), N.
     ``setup(sim)`` prepares the run after stabilisation (e.g. sets a drive)."""
 
@@ -191,13 +194,22 @@ def wave_arrival_time(
 
 
 def hustrulid_wave_speed_quantity(
-    side: int = 1, torque: float = 4e5, pulse: float = 0.07, duration: float = 0.6, gap_m: float = 26.0
+    side: int = 1,
+    torque: float = 4e5,
+    pulse: float = 0.07,
+    duration: float = 0.6,
+    gap_m: float = 26.0,
+    friction: Friction = Friction(static=0.5, kinetic=0.4),
 ) -> Quantity:
     """Case H axial wave speed, m/s of material, from a ``torque`` N·m pulse of ``pulse`` s
-    on the upper pulley (thesis §6.4.1), measured over ``gap_m`` m of strand
+    on the upper pulley (thesis §6.4.1), with ``friction`` on both pulleys to carry the
+    torque into the belt, measured over ``gap_m`` m of strand
     (:func:`beltrs.analysis.hustrulid_wave_speed`, 10 elements at 89). Exact: √(EA/ρ)."""
 
     def setup(sim: Simulation) -> None:
+        # Friction carries the pulley torque into the belt (as in tests/test_case_h.py).
+        sim.set_friction(0, friction)
+        sim.set_friction(1, friction)
         sim.set_drive(0, Drive.pulse(torque, pulse, start=sim.time))
 
     def measure(sim: Simulation) -> float:
@@ -396,7 +408,10 @@ class StudyTable:
     def to_markdown(self, scale: float = 1.0, unit: Optional[str] = None, digits: int = 6) -> str:
         """A Markdown table; values and errors multiplied by ``scale`` and labelled ``unit``."""
         u = unit if unit is not None else self.unit
-        head = f"| {self.refine} | nodes | dt (ms) | {self.quantity} ({u}) | error ({u}) | order | wall (s) | node-steps |"
+        head = (
+            f"| {self.refine} | nodes | dt (ms) | {self.quantity} ({u}) | error ({u}) | order | wall (s) "
+            "| node-steps |"
+        )
         rule = "|---:|---:|---:|---:|---:|---:|---:|---:|"
         lines = [head, rule]
         for r in self.rows:
@@ -528,13 +543,19 @@ def _h(refine: str, value: float) -> float:
     return float(value)
 
 
+def _as_quantity(quantity: Union[Quantity, Callable[[Simulation], float]]) -> Quantity:
+    if isinstance(quantity, Quantity):
+        return quantity
+    return Quantity(getattr(quantity, "__name__", "quantity"), "", quantity)
+
+
 def run_setting(
     scene: Scene, quantity: Union[Quantity, Callable[[Simulation], float]], stabilise_options: Optional[dict] = None
 ) -> tuple[float, Simulation, float, int]:
     """Build, stabilise (if asked), run the scenario and measure once.
 
     Returns (value, simulation, wall time s, node-steps)."""
-    q = quantity if isinstance(quantity, Quantity) else Quantity(getattr(quantity, "__name__", "quantity"), "", quantity)
+    q = _as_quantity(quantity)
     t0 = _time.perf_counter()
     sim = Simulation(scene)
     relax = 0
@@ -597,7 +618,7 @@ def accuracy_cost(
     if refine == "time_step_fraction" and max(ladder) > 1:
         raise _beltrs.SceneError(f"values: time_step_fraction {max(ladder)} must be <= 1")
     ladder.sort(key=lambda v: -_h(refine, v))
-    q = quantity if isinstance(quantity, Quantity) else Quantity(getattr(quantity, "__name__", "quantity"), "", quantity)
+    q = _as_quantity(quantity)
     ref_exact = exact if exact is not None else q.exact
     if ref_exact is None and len(ladder) < 3:
         raise _beltrs.SceneError(f"values = {ladder}: a Richardson reference needs at least three settings")
