@@ -113,7 +113,8 @@ def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
         run("wave_dt", lambda **kw: H(200, **kw), wave, "time_step_fraction", [0.9, 0.5, 0.25, 0.125])
         grid = []
         for n in (100, 200, 400):
-            t = study.accuracy_cost(lambda n=n, **kw: H(n, **kw), wave, "time_step_fraction", [0.9, 0.5, 0.25])
+            # (400 elements at fraction 0.9 does not relax: docs/performance.md, known issue)
+            t = study.accuracy_cost(lambda n=n, **kw: H(n, **kw), wave, "time_step_fraction", [0.8, 0.4, 0.2])
             grid += [(r.wall_time, r.error, f"{n}/{r.setting:g}") for r in t.rows]
         cw = study.counterweight_step_frequency()
         run("freq_elements", H, cw, values=[100, 200, 400])
@@ -319,14 +320,14 @@ def conclusions(T: dict[str, study.StudyTable]) -> str:
         "step, more relaxation steps). For dynamic answers the time step is the cheap lever to leave alone: "
         "halving the fraction doubles the cost and moved the wave speed and the frequency by at most "
         "0.05 %, far less than the mesh. The grid of element counts × time-step fractions in the "
-        "wave-speed plot has its front at 100 elements (all fractions): the half-amplitude read-out "
+        "wave-speed plot has its front at 100 elements: the half-amplitude read-out "
         "does not improve with the mesh, so the coarsest mesh is as good as any for it. "
         "Recommended: **time_step_fraction 0.5–0.9** (0.5 is the "
         "default and keeps a margin for contact and friction transients; 0.9 is safe for smooth runs), "
         "**elements of at most 30° of arc on the smallest pulley** (the default) for tensions, wave "
         "speeds and frequencies (errors below 1.5 %), and 2–4× that count when the takeup displacement "
-        "matters (5 % → 0.3 %); contact stiffness about 100× the largest nodal force per mm of "
-        "acceptable penetration (case H default 2e8 N/m).",
+        "matters (5 % → 0.3 %); contact stiffness such that the largest nodal force sinks a node "
+        "by under about 1 mm (case H default 2e8 N/m: 0.13 MN sinks 0.65 mm).",
     ]
     return "\n".join(lines)
 

@@ -49,8 +49,8 @@ def test_takeup_displacement_89_elements():
 @pytest.mark.slow
 def test_takeup_displacement_converges_at_second_order():
     # 100/200/400 rather than 89/178/356: at 356 elements (contact 2e8 N/m) the FIRE relaxation
-    # stalls at a residual of ~1e-2 for a rounding-level change of the bending forces (it
-    # converges at 2.01e8 or 1.99e8 N/m); reported to the lead, see docs/performance.md.
+    # stalls at a residual of ~1e-2 after a rounding-level change of the bending forces (it
+    # converges at 2.01e8 or 1.99e8 N/m); see docs/performance.md.
     sizes = [100, 200, 400]
     values = []
     for n in sizes:

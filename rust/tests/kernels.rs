@@ -85,9 +85,9 @@ fn bending_force_is_minus_gradient_of_bending_energy() {
     }
 }
 
-/// The bending kernel takes θ from atan(cross/dot) below 45° and from atan2 above: check the
-/// forces against the energy's finite-difference gradient on a loop whose kinks span both
-/// branches (about 5° to 160°, both signs).
+/// Bending forces against the energy's finite-difference gradient on a polyline whose kinks
+/// range from about 5° to 160°, both signs (a faster kernel that switches from atan(cross/dot)
+/// to atan2 at 45° must pass this; see docs/performance.md).
 #[test]
 fn bending_force_is_minus_gradient_across_small_and_sharp_kinks() {
     let turns = [
