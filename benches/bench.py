@@ -31,6 +31,16 @@ made in turn from the main thread; timings use ``time.perf_counter``):
    thesis's fixed step of 0.00036 s. Thesis anchor: about 15 minutes on a 486
    (about 1e3 node-steps/s); target: under 0.1 s.
 4. A per-stage profile (``Simulation.set_profiling``) of 5000 steps of case H with friction.
+5. Issue 4 targets, node-steps/s of step(): (1) a frictionless loop of 1e4 nodes (the
+   conveyor geometry below, 1 km, with idlers, no friction, no drive), (2) case H with
+   friction (section 1), (3) a 5000-node, 500 m conveyor with carry and return idlers, head
+   drive and tail gravity takeup (``bench_scenes.conveyor``), (4) case K with the node model
+   (``bench_scenes.kubas_drive``). Targets 2e7 (1) and 1e7 (2-4).
+6. The NumPy reference (``numpy_ref.py``) against beltrs on the same state: the ratio.
+7. Scaling: ns per node-step against nodes at one fixed step.
+8. Wall time against simulated time for a 1 km conveyor start-up (1e4 nodes, drive torque
+   ramped over 10 s; 1 s with --quick).
+9. Peak memory of the process (``resource.getrusage`` ru_maxrss).
 
 Tables give the median wall time, the spread of the repeats about it (fastest/slowest, %)
 and, for throughput, the rate of the fastest repeat ("best"), which is the steadier figure
@@ -41,6 +51,7 @@ ready to paste into the README.
 from __future__ import annotations
 
 import argparse
+import resource
 import json
 import math
 import os
@@ -54,6 +65,10 @@ from typing import Any
 
 import beltrs
 from beltrs import Belt, Drive, Friction, Pulley, Scene, Simulation, Takeup
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_scenes import conveyor, kubas_drive, strands_apart  # noqa: E402
+from numpy_ref import compare_speed  # noqa: E402
 
 FRICTION = Friction(static=0.3, kinetic=0.25)
 
@@ -292,6 +307,111 @@ def bench_profile(steps: int, repeats: int) -> dict[str, Any]:
     }
 
 
+# --- 5-9. targets of issue 4 ------------------------------------------------------------------
+def peak_memory_mb() -> float:
+    """Peak resident memory of this process so far, MB (getrusage ru_maxrss, kB on Linux)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def throughput(sim: Simulation, steps: int, repeats: int) -> dict[str, Any]:
+    """node-steps/s of step() (median and best of ``repeats``)."""
+    sim.step(max(10, steps // 10))  # warm-up, untimed
+    walls = [timed(lambda: sim.step(steps)) for _ in range(repeats)]
+    s = summary(walls)
+    return {
+        "nodes": sim.nodes,
+        "steps": steps,
+        "dt": sim.dt,
+        "dt_cause": sim.dt_cause,
+        "stages": sim.stages,
+        "wall": s,
+        "node_steps_per_s": sim.nodes * steps / s["median"],
+        "best_node_steps_per_s": sim.nodes * steps / s["min"],
+    }
+
+
+def bench_frictionless_loop(nodes: int, steps: int, repeats: int) -> dict[str, Any]:
+    """(1) The conveyor geometry (1 km, 0.2 m elements at 1e4 nodes) with idlers but no
+    friction and no drive, stepped from its initial placement (it settles on the idlers)."""
+    scene = conveyor(nodes * 0.1, nodes, friction=None, drive_torque=0.0)
+    return throughput(Simulation(scene), steps, repeats)
+
+
+def bench_conveyor(nodes: int, steps: int, repeats: int) -> dict[str, Any]:
+    """(3) Conveyor with idlers, head drive and tail takeup, stabilised (tolerance 1e-3),
+    then stepped while the drive ramps up."""
+    length = nodes * 0.1
+    sim = Simulation(conveyor(length, nodes))
+    t0 = time.perf_counter()
+    rep = sim.stabilise(tolerance=1e-3, max_steps=300_000)
+    stab = time.perf_counter() - t0
+    out = throughput(sim, steps, repeats)
+    out.update(
+        idlers=len(sim.scene.idlers),
+        stabilise_wall=stab,
+        stabilise_steps=rep["steps"],
+        strand_gap=strands_apart(sim.state()["node_position"], length, 0.4),
+    )
+    return out
+
+
+def bench_kubas(steps: int, repeats: int) -> dict[str, Any]:
+    """(4) Case K with the node model (150 elements, friction, drive and load)."""
+    sim = Simulation(kubas_drive())
+    sim.stabilise()
+    sim.step(int(0.2 / sim.dt))  # into the torque ramp: friction working
+    return throughput(sim, steps, repeats)
+
+
+def bench_startup(duration: float, chunk: float) -> dict[str, Any]:
+    """1 km conveyor (1e4 nodes of 0.2 m), stabilised, drive torque ramped over 10 s: wall
+    time against simulated time, run in chunks."""
+    sim = Simulation(conveyor(1000.0, 10_000))
+    t0 = time.perf_counter()
+    rep = sim.stabilise(tolerance=1e-3, max_steps=300_000)
+    stab = time.perf_counter() - t0
+    rows = []
+    wall = 0.0
+    while sim.time < duration - 0.5 * chunk:
+        res = sim.run(chunk, record_interval=0.05, tension=False, node_position=False, node_velocity=False)
+        wall += res.wall_time
+        rows.append({"time": sim.time, "wall": wall, "belt_speed": float(res.pulley_speed[-1, 0] * 0.4)})
+    return {
+        "nodes": sim.nodes,
+        "dt": sim.dt,
+        "dt_cause": sim.dt_cause,
+        "stabilise_wall": stab,
+        "stabilise_steps": rep["steps"],
+        "rows": rows,
+        "strand_gap": strands_apart(sim.state()["node_position"], 1000.0, 0.4),
+        "max_tension": float(sim.tensions().max()),
+    }
+
+
+def bench_scaling(sizes: list[int], steps: int) -> list[dict[str, Any]]:
+    """Cost per node-step against nodes at one fixed step (the smallest stable one)."""
+    scenes = [conveyor(n * 0.1, n, friction=None, drive_torque=0.0) for n in sizes]
+    dt = min(Simulation(sc).dt for sc in scenes)
+    out = []
+    for n, sc in zip(sizes, scenes):
+        sc.solver = beltrs.Solver(time_step=dt)
+        r = throughput(Simulation(sc), max(20, steps * sizes[0] // n), 3)
+        out.append({"nodes": n, "dt": dt, "ns_per_node_step": 1e9 / r["best_node_steps_per_s"], **r})
+    return out
+
+
+def bench_numpy(repeats: int) -> list[dict[str, Any]]:
+    """beltrs against benches/numpy_ref.py on the same state (case H 89 nodes; a 1e4-node
+    loop without idlers)."""
+    sim = Simulation(beltrs.scenes.hustrulid_loop(89))
+    sim.stabilise()
+    out = [{"case": "case H, 89 nodes", **compare_speed(sim, 2000)}]
+    scene = conveyor(1000.0, 10_000, friction=None, drive_torque=0.0)
+    scene.idlers = []
+    out.append({"case": "loop, 1e4 nodes, no idlers", **compare_speed(Simulation(scene), 200)})
+    return out
+
+
 # --- report -------------------------------------------------------------------------------
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -443,6 +563,53 @@ def main(argv: list[str] | None = None) -> int:
         "stages); 'outside stages' is the integration, bookkeeping and the timer calls themselves"
     )
 
+    # 5-9. issue 4 targets
+    heading("5. Throughput targets (single thread, step() without recording)")
+    loop = bench_frictionless_loop(10_000, 300 if args.quick else 2000, repeats)
+    conv = bench_conveyor(5000, 300 if args.quick else 2000, repeats)
+    kub = bench_kubas(2000 if args.quick else 20000, repeats)
+    rows = []
+    for name, r, target in (
+        ("(1) frictionless loop + idlers, 1e4 nodes", loop, 2e7),
+        ("(2) case H with friction, 89 nodes", case_hf, 1e7),
+        ("(3) conveyor, idlers + drive + friction, 5000 nodes", conv, 1e7),
+        ("(4) case K (node model), 150 nodes", kub, 1e7),
+    ):
+        rows.append(
+            [name, f"{r['dt'] * 1e6:.2f}", si(r["node_steps_per_s"]), si(r["best_node_steps_per_s"]), si(target),
+             "yes" if r["node_steps_per_s"] >= target else "NO"]
+        )
+    print(table(["scene", "dt us", "node-steps/s", "best", "target", "met"], rows))
+    print(f"conveyor: {conv['idlers']} idlers, stabilised in {seconds(conv['stabilise_wall'])} "
+          f"({conv['stabilise_steps']} steps, tolerance 1e-3); strands at least {conv['strand_gap']:.3f} m apart; "
+          f"dt limited by {conv['dt_cause']}")
+    print(f"loop: dt limited by {loop['dt_cause']}")
+
+    heading("6. NumPy reference (benches/numpy_ref.py), same state, same scene")
+    npr = bench_numpy(repeats)
+    print(table(["case", "beltrs node-steps/s", "NumPy node-steps/s", "ratio"],
+                [[r["case"], si(r["beltrs_node_steps_per_s"]), si(r["numpy_node_steps_per_s"]),
+                  f"{r['ratio']:.0f}x"] for r in npr]))
+
+    heading("7. Scaling with nodes (fixed dt, conveyor loop without friction)")
+    sizes = [1250, 2500, 5000] if args.quick else [1250, 2500, 5000, 10000, 20000, 40000]
+    scal = bench_scaling(sizes, 400 if args.quick else 4000)
+    print(table(["nodes", "steps", "wall", "node-steps/s (best)", "ns/node-step"],
+                [[str(r["nodes"]), str(r["steps"]), seconds(r["wall"]["min"]), si(r["best_node_steps_per_s"]),
+                  f"{r['ns_per_node_step']:.1f}"] for r in scal]))
+
+    heading("8. 1 km conveyor start-up (1e4 nodes), drive torque ramped over 10 s")
+    start = bench_startup(1.0 if args.quick else 10.0, 0.5 if args.quick else 1.0)
+    print(f"dt {start['dt'] * 1e6:.2f} us ({start['dt_cause']}); stabilise {seconds(start['stabilise_wall'])} "
+          f"({start['stabilise_steps']} steps); strands at least {start['strand_gap']:.3f} m apart at the end")
+    print(table(["simulated s", "wall s", "wall / simulated", "belt speed m/s"],
+                [[f"{r['time']:.1f}", f"{r['wall']:.2f}", f"{r['wall'] / r['time']:.2f}", f"{r['belt_speed']:.3f}"]
+                 for r in start["rows"]]))
+
+    heading("9. Peak memory")
+    mem = peak_memory_mb()
+    print(f"peak resident memory of this process (getrusage ru_maxrss): {mem:.0f} MB")
+
     # summary
     elapsed = time.perf_counter() - started
     heading("Summary (Markdown)")
@@ -467,6 +634,13 @@ def main(argv: list[str] | None = None) -> int:
             f"{seconds(fixed['wall']['median'])} ({fixed['speedup_vs_thesis']:.3g}x the 486)",
         ],
         ["Thesis §6.4.2 on a 486 (Hustrulid)", "~15 min (~1e3 node-steps/s)"],
+        ["(1) Frictionless loop with idlers, 1e4 nodes", f"{si(loop['node_steps_per_s'])} node-steps/s"],
+        ["(3) Conveyor, 5000 nodes, idlers + drive + friction", f"{si(conv['node_steps_per_s'])} node-steps/s"],
+        ["(4) Case K, 150 nodes, node model", f"{si(kub['node_steps_per_s'])} node-steps/s"],
+        *[[f"beltrs / NumPy, {r['case']}", f"{r['ratio']:.0f}x"] for r in npr],
+        [f"1 km start-up, 1e4 nodes, {start['rows'][-1]['time']:.0f} s simulated",
+         f"{start['rows'][-1]['wall']:.1f} s wall"],
+        ["Peak memory (whole bench)", f"{mem:.0f} MB"],
     ]
     print(table(["Benchmark (one thread, median)", "Figure"], md_rows, markdown=True))
     print(f"\nbench wall time: {seconds(elapsed)}")
@@ -490,6 +664,13 @@ def main(argv: list[str] | None = None) -> int:
             "long_loop": long,
             "thesis_6_4_2": {"automatic_dt": auto, "fixed_dt": fixed, "thesis_wall_486": THESIS_WALL},
             "profile": prof,
+            "frictionless_loop": loop,
+            "conveyor": conv,
+            "case_k": kub,
+            "numpy": npr,
+            "scaling": scal,
+            "startup_1km": start,
+            "peak_memory_mb": mem,
         }
         with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(out, fh, indent=2)

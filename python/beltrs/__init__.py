@@ -5,7 +5,7 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, scenes
+from . import analysis, analytic, scenes, study
 from ._beltrs import BeltrsError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import __version__
 from .result import Result
@@ -35,4 +35,5 @@ __all__ = [
     "analytic",
     "load_scene",
     "scenes",
+    "study",
 ]

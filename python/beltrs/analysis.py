@@ -6,7 +6,14 @@ from typing import Sequence
 
 import numpy as np
 
-__all__ = ["arrival_time", "belt_coordinate", "hustrulid_tangent_tensions", "strand_tension"]
+__all__ = [
+    "arrival_time",
+    "belt_coordinate",
+    "hustrulid_tangent_tensions",
+    "hustrulid_wave_speed",
+    "oscillation",
+    "strand_tension",
+]
 
 
 def strand_tension(
@@ -75,3 +82,52 @@ def hustrulid_tangent_tensions(
     c = strand_tension(node_position, tension, (w, yl), (w, yt), (w, yt), **kw)
     d = strand_tension(node_position, tension, (-w, yt), (-w, yl), (-w, yt), **kw)
     return a, b, c, d
+
+
+def hustrulid_wave_speed(
+    time: np.ndarray,
+    tension: np.ndarray,
+    node_position: np.ndarray,
+    rest_length: float,
+    side: int = 1,
+    gap: int = 10,
+) -> float:
+    """Case H axial wave speed, m/s of belt material, from a recorded pulse.
+
+    On the strand at x = ``side`` × 5 m (``side`` = ±1), the elements whose midpoints lie
+    between y = 10 m and 90 m are taken in belt order; the arrival (half the peak change,
+    :func:`arrival_time`) is read at the third of them and at the one ``gap`` elements on
+    (10 elements = 26 m at 89 elements, as the thesis's nodes 60 and 70). Speed = material
+    distance ``gap`` × ``rest_length`` (m) over the arrival-time difference.
+
+    Args:
+        time: ``[n]`` s. tension: ``[n, E]`` N. node_position: ``[E, 2]`` m, any recorded
+        instant before the pulse has moved the belt much (the first is fine).
+    """
+    x = np.asarray(node_position, dtype=float)
+    mid = 0.5 * (x + np.roll(x, -1, axis=0))
+    strand = np.where((side * mid[:, 0] > 4) & (mid[:, 1] > 10) & (mid[:, 1] < 90))[0]
+    if len(strand) < gap + 3:
+        raise ValueError(f"only {len(strand)} elements on the strand at side {side}; need {gap + 3}")
+    a, b = strand[2], strand[2 + gap]
+    ta = arrival_time(time, tension[:, a])
+    tb = arrival_time(time, tension[:, b])
+    return float(abs(b - a) * rest_length / abs(tb - ta))
+
+
+def oscillation(time: np.ndarray, signal: np.ndarray) -> tuple[float, float, float]:
+    """Centre, amplitude and frequency of a steady oscillation (e.g. a step response).
+
+    Centre = midpoint of the extremes, amplitude = half the peak-to-peak (units of
+    ``signal``), frequency (Hz) from the upward crossings of the centre: (crossings − 1) /
+    (last − first). Needs at least two upward crossings.
+    """
+    t = np.asarray(time, dtype=float)
+    y0 = np.asarray(signal, dtype=float)
+    centre = 0.5 * (y0.max() + y0.min())
+    y = y0 - centre
+    crossings = t[1:][(y[:-1] < 0) & (y[1:] >= 0)]
+    if len(crossings) < 2:
+        raise ValueError(f"{len(crossings)} upward crossings: run longer to measure a frequency")
+    frequency = (len(crossings) - 1) / (crossings[-1] - crossings[0])
+    return float(centre), float(0.5 * np.ptp(y0)), float(frequency)

@@ -84,3 +84,43 @@ fn bending_force_is_minus_gradient_of_bending_energy() {
         }
     }
 }
+
+/// Bending forces against the energy's finite-difference gradient on a polyline whose kinks
+/// range from about 5° to 160°, both signs (a faster kernel that switches from atan(cross/dot)
+/// to atan2 at 45° must pass this; see docs/performance.md).
+#[test]
+fn bending_force_is_minus_gradient_across_small_and_sharp_kinks() {
+    let turns = [
+        0.09, -0.2, 0.6, 0.78, 0.8, -1.2, 2.8, -0.05, 1.5, -2.2, 0.3, 0.7,
+    ];
+    // Walk a polyline with these turning angles and varying lengths; close it as a loop (the
+    // closing element's two kinks are whatever the geometry makes them).
+    let mut x = vec![V2::zeros()];
+    let mut heading = 0.0_f64;
+    for (i, t) in turns.iter().enumerate() {
+        heading += t;
+        let l = 1.0 + 0.13 * i as f64;
+        let last = *x.last().unwrap();
+        x.push(last + V2::new(heading.cos(), heading.sin()) * l);
+    }
+    let n = x.len();
+    let angles: Vec<f64> = (0..n).map(|j| forces::bending_angle(&x, j)).collect();
+    assert!(angles.iter().any(|a| a.abs() < 0.2), "{angles:?}");
+    assert!(angles.iter().any(|a| a.abs() > 2.0), "{angles:?}");
+    let kt: Vec<f64> = (0..n).map(|j| 20.0 + 3.0 * j as f64).collect();
+    let mut f = vec![V2::zeros(); n];
+    forces::bending(&x, &kt, &mut f);
+    let energy = |y: &[V2]| bending_energy(y, &kt);
+    for i in 0..n {
+        for c in 0..2 {
+            let g = gradient(&x, i, c, &energy);
+            // Same tolerance as above: h = 1e-6 central differences on O(100) N forces.
+            assert!(
+                (f[i][c] + g).abs() < 1e-5 * (1.0 + g.abs()),
+                "node {i} comp {c}: {} vs {}",
+                f[i][c],
+                -g
+            );
+        }
+    }
+}
