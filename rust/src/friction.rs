@@ -61,6 +61,8 @@ pub struct FrictionOutcome {
     pub slipping: usize,
     /// Brake torque, N·m, when the pulley has a brake (solved with the friction).
     pub brake_torque: Option<f64>,
+    /// The brake holds the pulley: it stops this step (exactly, not up to rounding).
+    pub brake_holds: bool,
 }
 
 /// Solve and apply stick-force friction for the nodes touching one pulley
@@ -121,7 +123,9 @@ pub fn pulley_stick_friction(
         }
         let needed = pulley.inertia * alpha - pulley.applied_torque - r * tangential;
         if needed.abs() <= capacity {
-            return apply(contacts, scratch, force, r, slipped, Some(needed));
+            let mut out = apply(contacts, scratch, force, r, slipped, Some(needed));
+            out.brake_holds = true;
+            return out;
         }
         brake = Some(capacity.copysign(needed));
         scratch.sticking.iter_mut().for_each(|s| *s = true);

@@ -61,6 +61,8 @@ pub struct Scratch {
     pub drive_torque: Vec<f64>,
     /// Brake torque on each pulley, N·m.
     pub brake_torque: Vec<f64>,
+    /// Whether each pulley's brake holds it this step (it then stops exactly).
+    pub brake_holds: Vec<bool>,
     /// Contact of each idler.
     pub idler_contacts: Vec<IdlerContact>,
     /// Friction torque on each idler, N·m.
@@ -79,6 +81,7 @@ impl Scratch {
             friction: vec![FrictionOutcome::default(); p],
             drive_torque: vec![0.0; p],
             brake_torque: vec![0.0; p],
+            brake_holds: vec![false; p],
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
         }
@@ -320,6 +323,7 @@ impl Simulation {
         sc.force.iter_mut().for_each(|f| *f = V2::zeros());
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
+        sc.brake_holds.iter_mut().for_each(|h| *h = false);
         sc.friction
             .iter_mut()
             .for_each(|f| *f = FrictionOutcome::default());
@@ -490,6 +494,7 @@ impl Simulation {
                                 if let Some(t) = sc.friction[j].brake_torque {
                                     // Solved with the belt friction.
                                     sc.brake_torque[j] = t;
+                                    sc.brake_holds[j] = sc.friction[j].brake_holds;
                                     continue;
                                 }
                                 let capacity = b.capacity.eval(s.time);
@@ -498,6 +503,7 @@ impl Simulation {
                                 let other = sc.drive_torque[j] + sc.friction[j].torque;
                                 let needed = -(p.inertia * s.pulley_omega[j] / dt + other);
                                 sc.brake_torque[j] = needed.clamp(-capacity, capacity);
+                                sc.brake_holds[j] = needed.abs() <= capacity;
                             }
                         }
                     }
@@ -531,7 +537,12 @@ impl Simulation {
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
             let old = s.pulley_omega[j];
-            let new = old + dt * torque / p.inertia;
+            // A holding brake stops the pulley this step; say so exactly.
+            let new = if sc.brake_holds[j] {
+                0.0
+            } else {
+                old + dt * torque / p.inertia
+            };
             s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
             s.pulley_omega[j] = new;
             s.pulley_angle[j] += new * dt;
