@@ -6,7 +6,7 @@ everywhere.
 """
 
 from . import analysis, analytic, scenes
-from ._beltrs import BeltrsError, DivergenceError, SceneError, TimeStepError
+from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import __version__
 from .result import Result
 from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
@@ -16,6 +16,7 @@ __all__ = [
     "Belt",
     "BeltrsError",
     "Brake",
+    "CheckpointError",
     "DivergenceError",
     "Drive",
     "Friction",

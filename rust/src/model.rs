@@ -325,7 +325,9 @@ impl Model {
         if scene.belt.bending_stiffness > 0.0 {
             stages.push(Stage::Bending);
         }
-        stages.push(Stage::PulleyContact);
+        if pulleys.iter().any(|p| p.contact_stiffness > 0.0) {
+            stages.push(Stage::PulleyContact);
+        }
         if !idlers.is_empty() {
             stages.push(Stage::IdlerContact);
         }
@@ -413,7 +415,7 @@ impl Model {
         }
         self.takeup_stiffness_bound = vec![0.0; self.pulleys.len()];
         for (j, p) in self.pulleys.iter().enumerate() {
-            if let Some(t) = &p.takeup {
+            if let (Some(t), true) = (&p.takeup, p.contact_stiffness > 0.0) {
                 let wrap = self.path.wrap_angles[j];
                 let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
                 let k = nodes_on_wrap * p.contact_stiffness;

@@ -288,7 +288,9 @@ pub struct PulleySpec {
     pub wrap: Wrap,
     /// Belt–pulley friction. Default frictionless.
     pub friction: FrictionModel,
-    /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Default 1e9.
+    /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Zero
+    /// switches contact with this pulley off (the belt passes through it); with zero on
+    /// every pulley no pulley-contact stage is compiled. Default 1e9.
     pub contact_stiffness: f64,
     /// Normal contact damping, N·s/m (not in the thesis). Default 0.
     pub contact_damping: f64,
@@ -511,7 +513,7 @@ impl Scene {
             if let Some(inertia) = p.inertia {
                 check_positive(&format!("{f}.inertia"), inertia)?;
             }
-            check_positive(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
+            check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
             if let Some(t) = &p.takeup {

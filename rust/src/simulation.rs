@@ -111,7 +111,9 @@ impl Inertia {
             .pulleys
             .iter()
             .enumerate()
-            .map(|(j, p)| match p.takeup {
+            .map(|(j, p)| match &p.takeup {
+                // A takeup without pulley contact feels only its pull: keep its true mass.
+                Some(t) if model.takeup_stiffness_bound[j] == 0.0 => t.moving_mass,
                 Some(_) => model.takeup_stiffness_bound[j] * dt2,
                 None => f64::INFINITY,
             })
@@ -189,6 +191,7 @@ pub struct Simulation {
     pub recording: Recording,
     record_every: u64,
     record_counter: u64,
+    max_samples: usize,
     /// Per-stage wall time, s (same order as `model.stages`), when profiling is on.
     pub profile: Option<Vec<f64>>,
 }
@@ -201,7 +204,9 @@ impl Simulation {
         Ok(Self::from_parts(model, state))
     }
 
-    fn from_parts(model: Model, state: State) -> Simulation {
+    /// A simulation of `model` at `state` (e.g. read back from a checkpoint). The state's
+    /// array lengths must match the model (checked by the checkpoint reader).
+    pub(crate) fn from_parts(model: Model, state: State) -> Simulation {
         let scratch = Scratch::new(&model);
         let inertia = Inertia::physical(&model);
         let recording = Recording::new(
@@ -218,6 +223,7 @@ impl Simulation {
             recording,
             record_every: 1,
             record_counter: 0,
+            max_samples: usize::MAX,
             profile: None,
         }
     }
@@ -312,6 +318,10 @@ impl Simulation {
                 Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
                 Stage::PulleyContact => {
                     for (j, p) in m.pulleys.iter().enumerate() {
+                        // Zero stiffness: the belt passes through this pulley (no contact).
+                        if p.contact_stiffness == 0.0 {
+                            continue;
+                        }
                         let body = PulleyBody {
                             center: s.pulley_center(m, j),
                             center_velocity: s.pulley_center_velocity(m, j),
@@ -550,8 +560,12 @@ impl Simulation {
         Ok(())
     }
 
-    /// Start a new recording: the state is sampled now and every `every` steps.
-    pub fn begin_recording(&mut self, channels: Channels, every: u64) {
+    /// Start a new recording: the state is sampled now and every `every` steps, keeping at
+    /// most `max_samples` instants (≥ 2). When the buffer is full, every other instant is
+    /// dropped and the interval doubles ([`Recording::decimate`]), so the recording always
+    /// spans the whole run on a uniform grid and its memory stays below
+    /// `max_samples × Recording::bytes_per_sample()`.
+    pub fn begin_recording(&mut self, channels: Channels, every: u64, max_samples: usize) {
         self.recording = Recording::new(
             channels,
             self.model.nodes,
@@ -560,6 +574,34 @@ impl Simulation {
         );
         self.record_every = every.max(1);
         self.record_counter = 0;
+        self.max_samples = max_samples.max(2);
+    }
+
+    /// Steps between recorded instants now (the requested interval, doubled at each
+    /// decimation).
+    pub fn record_every(&self) -> u64 {
+        self.record_every
+    }
+
+    /// Bound on the number of recorded instants of the current recording.
+    pub fn max_samples(&self) -> usize {
+        self.max_samples
+    }
+
+    /// Sample if the step counter is on the recording grid, decimating first when full.
+    fn record_if_due(&mut self) {
+        if !self.record_counter.is_multiple_of(self.record_every) {
+            return;
+        }
+        if self.recording.len() >= self.max_samples {
+            self.recording.decimate();
+            self.record_every = self.record_every.saturating_mul(2);
+            if !self.record_counter.is_multiple_of(self.record_every) {
+                return;
+            }
+        }
+        self.recording.reserve_one(self.max_samples);
+        self.sample();
     }
 
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
@@ -567,9 +609,7 @@ impl Simulation {
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
         for _ in 0..steps {
             self.evaluate(Effects::ALL);
-            if self.record_counter.is_multiple_of(self.record_every) {
-                self.sample();
-            }
+            self.record_if_due();
             self.record_counter += 1;
             self.integrate()?;
         }
@@ -580,11 +620,13 @@ impl Simulation {
     pub fn end_recording(&mut self) {
         if self.record_counter.is_multiple_of(self.record_every) {
             self.evaluate(Effects::ALL);
-            self.sample();
+            self.record_if_due();
         }
     }
 
     /// Run for `duration` seconds (rounded to whole steps), sampling every `every` steps.
+    /// The recording is unbounded here; use [`Simulation::begin_recording`] with a bound for
+    /// long runs.
     pub fn run(&mut self, duration: f64, every: u64, channels: Channels) -> BeltResult<&Recording> {
         if !(duration.is_finite() && duration >= 0.0) {
             return Err(BeltError::invalid(
@@ -594,7 +636,7 @@ impl Simulation {
             ));
         }
         let steps = (duration / self.model.dt).round() as u64;
-        self.begin_recording(channels, every);
+        self.begin_recording(channels, every, usize::MAX);
         self.advance(steps)?;
         self.end_recording();
         Ok(&self.recording)

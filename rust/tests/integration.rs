@@ -3,5 +3,7 @@
 mod common;
 
 mod case_h_statics;
+mod checkpoint;
 mod friction_contact;
 mod kernels;
+mod recorder;
