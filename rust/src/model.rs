@@ -6,7 +6,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::geometry::BeltPath;
-use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
+use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
 
 /// One step of the force evaluation. The compiled list holds only the stages a scene needs
@@ -166,6 +166,13 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         let path = BeltPath::from_pulleys(&scene.pulleys)?;
+        if !(path.length.is_finite() && path.length > 0.0) {
+            return Err(BeltError::invalid(
+                "pulleys",
+                format!("a belt path of {} m", path.length),
+                "the path length must be finite and > 0 (centres or radii too large)",
+            ));
+        }
         let belt = &scene.belt;
         let belt_length = belt.length.unwrap_or(path.length);
         let min_radius = scene
@@ -202,7 +209,19 @@ impl Model {
         }
         let n = match belt.elements {
             Some(n) => n,
-            None => (belt_length / (belt.max_element_angle * min_radius)).ceil() as usize,
+            None => {
+                let wanted = (belt_length / (belt.max_element_angle * min_radius)).ceil();
+                if wanted > MAX_ELEMENTS as f64 {
+                    return Err(BeltError::invalid(
+                        "belt.max_element_angle",
+                        belt.max_element_angle,
+                        format!(
+                            "a {belt_length} m belt needs {wanted:e} elements of at most this arc on the smallest pulley (radius {min_radius} m), more than {MAX_ELEMENTS}; give belt.elements or check the units"
+                        ),
+                    ));
+                }
+                wanted as usize
+            }
         };
         if n < 3 {
             return Err(BeltError::invalid(

@@ -7,6 +7,11 @@
 
 use crate::error::{BeltError, BeltResult};
 
+/// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
+/// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
+/// (e.g. a radius in millimetres), and would exhaust memory rather than fail cleanly.
+pub const MAX_ELEMENTS: usize = 1_000_000;
+
 /// Which discrete belt model to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Formulation {
@@ -42,7 +47,8 @@ pub struct BeltParams {
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
-    /// Number of elements (= number of nodes, the loop is closed). `None`: the fewest
+    /// Number of elements (= number of nodes, the loop is closed), 3 to [`MAX_ELEMENTS`].
+    /// `None`: the fewest
     /// elements whose unstretched length is at most the arc of `max_element_angle` on the
     /// smallest pulley (thesis §6.1). Default `None`.
     pub elements: Option<usize>,
@@ -473,6 +479,13 @@ impl Scene {
                     "belt.elements",
                     n,
                     "a closed belt needs at least 3 elements",
+                ));
+            }
+            if n > MAX_ELEMENTS {
+                return Err(BeltError::invalid(
+                    "belt.elements",
+                    n,
+                    format!("must be at most {MAX_ELEMENTS}"),
                 ));
             }
         }
