@@ -17,8 +17,12 @@ pretensioned belt (the belt is 0.1 % shorter than its path), without gravity; fo
 contact" itself the reference is the belt with no contact at all. "all" switches everything
 on and compares with the baseline.
 
-Times are medians over interleaved repeats; wall clock, single thread. Steps run without
-recording (``sim.step``). Run ``python benches/effects.py`` (about a minute);
+Each round times the three scenes in random order; ``off/ref`` and the increment are
+taken within a round (neighbours in time, so slow drifts of a shared machine cancel) and
+the table gives their medians over the rounds, with the interquartile range of ``off/ref``
+as the noise it is judged against. Stage profiles are medians too, from separate copies of
+the scenes with profiling on. Wall clock, single thread; steps run without recording
+(``sim.step``). Run ``python benches/effects.py`` (about a minute);
 ``--quick`` for a short smoke run, ``--markdown`` to print the table for docs/effects.md.
 """
 
@@ -28,6 +32,7 @@ import argparse
 import math
 import os
 import platform
+import random
 import statistics
 import time
 from dataclasses import replace
@@ -150,9 +155,10 @@ def per_step(sim: beltrs.Simulation, steps: int) -> float:
 
 
 def measure(builders: dict[str, Callable[[], Scene]], repeats: int, budget: float) -> tuple[dict, dict, dict]:
-    """Median time per step of each scene and median profile per step of each stage, over
-    ``repeats`` interleaved rounds (a preemption on a busy machine then spoils one sample,
-    not the answer), and the compiled stages. ``budget``: seconds per measurement."""
+    """Time per step of each scene in each of ``repeats`` rounds (scenes in random order
+    within a round, so that ratios can be taken between neighbours in time), the median
+    profile per step of each stage, and the compiled stages. ``budget``: seconds per
+    measurement."""
     sims = {name: beltrs.Simulation(b()) for name, b in builders.items()}
     profiled = {name: beltrs.Simulation(b()) for name, b in builders.items()}
     steps = {}
@@ -164,19 +170,22 @@ def measure(builders: dict[str, Callable[[], Scene]], repeats: int, budget: floa
         steps[name] = max(50, int(budget / est))
     samples: dict[str, list[float]] = {name: [] for name in sims}
     stage_samples: dict[str, dict[str, list[float]]] = {name: {} for name in sims}
+    rng = random.Random(1)
     for _ in range(repeats):
-        for name, sim in sims.items():
-            samples[name].append(per_step(sim, steps[name]))
+        order = list(sims)
+        rng.shuffle(order)  # no scene always runs first (or right after a given one)
+        for name in order:
+            samples[name].append(per_step(sims[name], steps[name]))
+        for name in order:
             p = profiled[name]
             p.set_profiling(True)
             p.step(steps[name])
             for stage, t in p.profile().items():
                 stage_samples[name].setdefault(stage, []).append(t / steps[name])
             p.set_profiling(False)
-    medians = {name: statistics.median(v) for name, v in samples.items()}
     profiles = {name: {s: statistics.median(v) for s, v in d.items()} for name, d in stage_samples.items()}
     stages = {name: sim.stages for name, sim in sims.items()}
-    return medians, profiles, stages
+    return samples, profiles, stages
 
 
 def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: float) -> list[dict]:
@@ -199,7 +208,13 @@ def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: f
             "off": lambda r=ref_on, o=off_kw: build(r, o),
             "on": lambda o=on: build(o),
         }
-        med, prof, stages = measure(builders, repeats, budget)
+        samples, prof, stages = measure(builders, repeats, budget)
+        med = {name: statistics.median(v) for name, v in samples.items()}
+        # Ratios within a round (neighbours in time), then their median and spread: the
+        # spread is the noise a "nothing measurable" claim is judged against.
+        ratios = sorted(o / r for o, r in zip(samples["off"], samples["ref"]))
+        q1, q3 = statistics.quantiles(ratios, n=4)[0], statistics.quantiles(ratios, n=4)[2]
+        increments = [o - r for o, r in zip(samples["on"], samples["ref"])]
         if effect == "all":
             booked = sum(prof["on"].values()) - sum(prof["ref"].values())
         else:
@@ -212,16 +227,18 @@ def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: f
                 "effect": effect,
                 "stages_off_equal_ref": stages["off"] == stages["ref"],
                 "ref": med["ref"],
-                "off_ratio": med["off"] / med["ref"],
+                "off_ratio": statistics.median(ratios),
+                "off_iqr": q3 - q1,
                 "on": med["on"],
-                "increment": med["on"] - med["ref"],
+                "increment": statistics.median(increments),
                 "profile": booked,
                 "stages_on": stages["on"],
             }
         )
         r = rows[-1]
         print(
-            f"{case:9s} {effect:16s} ref {1e6 * r['ref']:9.2f} us  off/ref {r['off_ratio']:6.3f}  on {1e6 * r['on']:9.2f} us  "
+            f"{case:9s} {effect:16s} ref {1e6 * r['ref']:9.2f} us  off/ref {r['off_ratio']:6.3f} (IQR {r['off_iqr']:.3f})  "
+            f"on {1e6 * r['on']:9.2f} us  "
             f"+{1e6 * r['increment']:8.2f} us  profile {1e6 * r['profile']:8.2f} us",
             flush=True,
         )
@@ -230,13 +247,13 @@ def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: f
 
 def markdown(rows: list[dict]) -> str:
     out = [
-        "| case | effect | ref µs/step | off/ref | on µs/step | increment µs | stage profile µs | increment/profile |",
+        "| case | effect | ref µs/step | off/ref (IQR) | on µs/step | increment µs | stage profile µs | increment/profile |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         ratio = r["increment"] / r["profile"] if r["profile"] > 0 else float("nan")
         out.append(
-            f"| {r['case']} | {r['effect']} | {1e6 * r['ref']:.2f} | {r['off_ratio']:.3f} | {1e6 * r['on']:.2f} | "
+            f"| {r['case']} | {r['effect']} | {1e6 * r['ref']:.2f} | {r['off_ratio']:.3f} ({r['off_iqr']:.3f}) | {1e6 * r['on']:.2f} | "
             f"{1e6 * r['increment']:+.2f} | {1e6 * r['profile']:.2f} | {ratio:.2f} |"
         )
     return "\n".join(out)
@@ -244,8 +261,8 @@ def markdown(rows: list[dict]) -> str:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--repeats", type=int, default=7, help="interleaved repeats per scene (median)")
-    ap.add_argument("--budget", type=float, default=0.05, help="seconds per timed measurement")
+    ap.add_argument("--repeats", type=int, default=15, help="interleaved repeats per scene (median)")
+    ap.add_argument("--budget", type=float, default=0.03, help="seconds per timed measurement")
     ap.add_argument("--quick", action="store_true", help="3 repeats of 10 ms (smoke run)")
     ap.add_argument("--markdown", action="store_true", help="print a markdown table at the end")
     ap.add_argument("--case", choices=["h", "conveyor", "both"], default="both")
