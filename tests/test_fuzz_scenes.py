@@ -26,21 +26,23 @@ def num(lo: float, hi: float) -> st.SearchStrategy:
 
 
 def friction() -> st.SearchStrategy:
-    return st.one_of(
-        st.none(),
-        st.fixed_dictionaries(
-            {"model": st.sampled_from(["stick_force", "stick_force", "stick_force", "creep"]), "static": num(0, 1)},
-            optional={"kinetic": num(0, 1)},
-        ),
-    )
+    """None or stick-force friction with µk ≤ µs (a larger µk comes from the corruptions)."""
+
+    def build(mu_s: float, share: float, give_kinetic: bool) -> dict:
+        d = {"model": "stick_force", "static": mu_s}
+        if give_kinetic:
+            d["kinetic"] = mu_s * share
+        return d
+
+    return st.one_of(st.none(), st.builds(build, num(0, 1), num(0, 1), st.booleans()))
 
 
 def table(xkey: str, ykey: str, lo: float, hi: float) -> st.SearchStrategy:
     return st.integers(1, 4).flatmap(
         lambda n: st.fixed_dictionaries(
             {
-                xkey: st.lists(num(0, 2), min_size=n, max_size=n).map(sorted),
-                ykey: st.lists(num(lo, hi), min_size=n, max_size=n + (1 if n == 4 else 0)),
+                xkey: st.lists(num(0, 2), min_size=n, max_size=n, unique=True).map(sorted),
+                ykey: st.lists(num(lo, hi), min_size=n, max_size=n),
             }
         )
     )
@@ -82,7 +84,7 @@ def pulleys(draw) -> list:
                 st.fixed_dictionaries(
                     {"counterweight": num(0, 1e4)},
                     optional={
-                        "direction": st.sampled_from([[0.0, -1.0], [1.0, 0.0], [0.6, -0.8], [1.0, 1.0], [0.0, 0.0]]),
+                        "direction": st.sampled_from([[0.0, -1.0], [1.0, 0.0], [0.6, -0.8]]),
                         "travel_min": num(-5, 0),
                         "travel_max": num(0, 5),
                     },
@@ -111,9 +113,7 @@ def scenes(draw) -> dict:
         "tension_only": draw(st.booleans()),
     }
     if draw(st.booleans()):
-        belt["elements"] = draw(
-            st.one_of(st.integers(3, 400), st.integers(3, 400), st.sampled_from([-5, 0, 1, 2, 10**7, 10**12, 2**62]))
-        )
+        belt["elements"] = draw(st.integers(3, 400))
     if draw(st.integers(0, 3)) == 0:
         belt["length"] = draw(num(1.0, 500.0))
     scene = {
@@ -138,7 +138,7 @@ def scenes(draw) -> dict:
     return scene
 
 
-WRONG = ["text", None, True, [], [1.0, "a"], {"x": 1}, 10**40, -(10**40), object()]
+WRONG = ["text", "creep", None, True, [], [1.0, "a"], {"x": 1}, 10**40, -(10**40), object()]
 
 
 @st.composite
@@ -168,6 +168,9 @@ def corrupted(draw) -> dict:
             container[key] = draw(st.sampled_from(WEIRD))
             continue
         container, key = draw(st.sampled_from(slots))
+        if key == "elements" and action == "wrong":
+            container[key] = draw(st.sampled_from([-5, 0, 1, 2, 10**7, 10**12, 2**62, 2**64]))
+            continue
         if action == "drop" and isinstance(container, dict):
             container.pop(key, None)
         elif action == "extra" and isinstance(container, dict):
@@ -211,7 +214,7 @@ def _leaves(node):
         yield node
 
 
-FUZZ = settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 @FUZZ
@@ -288,3 +291,16 @@ def test_zero_contact_stiffness_switches_pulley_contact_off():
     scene["pulleys"][0]["contact_stiffness"] = -1.0
     with pytest.raises(BeltrsError, match=r"pulleys\[0\]\.contact_stiffness = -1: must be ≥ 0"):
         _beltrs.Simulation(scene)
+
+
+def test_overflowing_drive_work_stops_the_run():
+    # Was: a 1e300 N*m drive made the drive work infinite while the run carried on and
+    # reported a "finite" state with drive_work = inf.
+    scene = _two_pulleys(axial_stiffness=1e4, mass_per_length=1.0, max_element_angle=1.0)
+    scene["gravity"] = 0.0
+    scene["pulleys"][1]["drive"] = {"time": [0.0], "torque": [1e300]}
+    sim = _beltrs.Simulation(scene)
+    sim.begin_recording(1, True, True, True, 1000)
+    with pytest.raises(DivergenceError, match=r"step 1\): work done of the drives"):
+        sim.advance(300)
+    assert len(sim.recording()["time"]) == 1

@@ -507,7 +507,7 @@ impl Simulation {
             s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
             s.pulley_omega[j] = new;
             s.pulley_angle[j] += new * dt;
-            check += new;
+            check += new + s.pulley_angle[j];
             if let Some(t) = &p.takeup {
                 let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
                 s.takeup_speed[j] += dt * f / self.inertia.takeup_mass[j];
@@ -528,6 +528,7 @@ impl Simulation {
         }
         s.time += dt;
         s.step += 1;
+        check += s.drive_work;
         if !check.is_finite() {
             return Err(self.locate_non_finite());
         }
@@ -563,6 +564,9 @@ impl Simulation {
             if !s.pulley_omega[j].is_finite() {
                 return diverged("angular speed", format!("pulley {}", p.name));
             }
+            if !s.pulley_angle[j].is_finite() {
+                return diverged("rotation angle", format!("pulley {}", p.name));
+            }
             if !s.takeup_travel[j].is_finite() || !s.takeup_speed[j].is_finite() {
                 return diverged("takeup travel", format!("pulley {}", p.name));
             }
@@ -571,6 +575,9 @@ impl Simulation {
             if !s.idler_omega[k].is_finite() {
                 return diverged("angular speed", format!("idler {k}"));
             }
+        }
+        if !s.drive_work.is_finite() {
+            return diverged("work done", "the drives".to_string());
         }
         diverged("energy", "the model".to_string())
     }
