@@ -214,14 +214,14 @@ def test_builtin_progress_bar_and_switch(capsys, monkeypatch):
 # --- Ctrl-C ---------------------------------------------------------------------------
 
 
-def test_ctrl_c_in_process_returns_partial_result():
+def test_ctrl_c_in_process_returns_partial_result(tmp_path):
     sim = beltrs.Simulation(tiny_scene())
     steps = 50_000_000  # about a minute: Ctrl-C must stop it long before
     timer = threading.Timer(0.5, _thread.interrupt_main)
     timer.start()
     t0 = time.perf_counter()
     try:
-        res = sim.run(steps * sim.dt, record_every=100, progress=False)
+        res = sim.run(steps * sim.dt, record_every=100, progress=False, checkpoint=tmp_path / "run.ck")
     finally:
         timer.cancel()
     wall = time.perf_counter() - t0
@@ -229,6 +229,8 @@ def test_ctrl_c_in_process_returns_partial_result():
     assert wall < 5.0
     done = sim.state()["step"]
     assert 0 < done < steps
+    # The interrupted state was checkpointed.
+    assert beltrs.Simulation.load_checkpoint(tmp_path / "run.ck").state()["step"] == done
     # Everything up to the interruption is there, on the grid, finite.
     # Samples at steps 0, 100, ... < done, plus the final state when it is on the grid.
     assert len(res) == done // 100 + 1
@@ -292,3 +294,14 @@ def test_divergence_after_many_chunks_keeps_everything_before():
     )
     assert np.all(np.isfinite(partial.node_position))
     assert not partial.interrupted
+
+
+def test_periodic_checkpoints_during_a_run(tmp_path):
+    path = tmp_path / "run.ck"
+    sim = beltrs.Simulation(tiny_scene())
+    sim.run(20_000 * sim.dt, record_every=1000, progress=False, checkpoint=path, checkpoint_interval=0.0)
+    resumed = beltrs.Simulation.load_checkpoint(path)
+    assert resumed.state()["step"] == 20_000
+    a = sim.run(500 * sim.dt, record_every=7, progress=False)
+    b = resumed.run(500 * sim.dt, record_every=7, progress=False)
+    assert np.array_equal(a.node_velocity, b.node_velocity) and np.array_equal(a.energy, b.energy)
