@@ -6,7 +6,7 @@ everywhere.
 """
 
 from . import analysis, analytic, scenes, study
-from ._beltrs import BeltrsError, DivergenceError, SceneError, TimeStepError
+from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import __version__
 from .result import Result
 from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Recording, Scene, Solver, Takeup
@@ -17,6 +17,7 @@ __all__ = [
     "Belt",
     "BeltrsError",
     "Brake",
+    "CheckpointError",
     "DivergenceError",
     "Drive",
     "Friction",

@@ -43,8 +43,11 @@ class Result:
         dt: time step, s.
         stages: compiled stages.
         wall_time: wall-clock seconds of the run.
-        interrupted: True if stopped by Ctrl-C.
+        interrupted: True if stopped by Ctrl-C (the arrays hold everything recorded until then).
         pulley_names: names of the pulleys.
+        record_every: steps between recorded instants at the end of the run: the requested
+            interval, doubled each time the recording reached its bound (``max_samples``)
+            and dropped every other instant.
     """
 
     time: np.ndarray
@@ -71,6 +74,7 @@ class Result:
     wall_time: float = 0.0
     interrupted: bool = False
     pulley_names: list[str] = field(default_factory=list)
+    record_every: int = 1
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import time as _time
 from dataclasses import replace
 from typing import Any, Optional, Union
@@ -9,10 +10,88 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from . import _beltrs
+from ._progress import make_bar
 from .result import Result
-from .scene import Drive, Friction, Scene
+from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
 
-__all__ = ["Simulation"]
+__all__ = ["DEFAULT_MAX_MEMORY", "Simulation"]
+
+#: Default bound on the memory of a run's recording, bytes (256 MiB); see :meth:`Simulation.run`.
+DEFAULT_MAX_MEMORY = 256 * 2**20
+_MAX_STEPS = 2**63 - 1
+_CHUNK_SECONDS = 0.1
+
+
+def _next_chunk(chunk: int, seconds: float) -> int:
+    """Steps for the next chunk so that it takes about ``_CHUNK_SECONDS`` of wall time
+    (growing or shrinking at most fourfold per chunk)."""
+    if seconds <= 0:
+        return min(chunk * 4, 1 << 40)
+    wanted = int(chunk * _CHUNK_SECONDS / seconds)
+    return max(1, chunk // 4, min(wanted, 4 * chunk, 1 << 40))
+
+
+def _friction(d: Optional[dict[str, Any]]) -> Optional[Friction]:
+    if d is None:
+        return None
+    return Friction(static=d["static"], kinetic=d["kinetic"], model=d["model"])
+
+
+def _scene_from_dict(d: dict[str, Any]) -> Scene:
+    """A :class:`Scene` from the engine's dict form (as stored in a checkpoint)."""
+    pulleys = []
+    for p in d["pulleys"]:
+        t, dr, br = p["takeup"], p["drive"], p["brake"]
+        pulleys.append(
+            Pulley(
+                center=tuple(p["center"]),  # type: ignore[arg-type]
+                radius=p["radius"],
+                mass=p["mass"],
+                inertia=p["inertia"],
+                wrap=p["wrap"],
+                friction=_friction(p["friction"]),
+                contact_stiffness=p["contact_stiffness"],
+                contact_damping=p["contact_damping"],
+                takeup=None
+                if t is None
+                else Takeup(
+                    counterweight=t["counterweight"],
+                    direction=tuple(t["direction"]),  # type: ignore[arg-type]
+                    travel_min=t["travel_min"],
+                    travel_max=t["travel_max"],
+                ),
+                drive=None
+                if dr is None
+                else Drive(
+                    time=list(dr["time"]),
+                    torque=list(dr["torque"]),
+                    speed=dr.get("speed"),
+                    speed_factor=dr.get("speed_factor"),
+                    viscous=dr["viscous"],
+                    inertia=dr["inertia"],
+                ),
+                brake=None if br is None else Brake(time=list(br["time"]), capacity=list(br["capacity"])),
+                name=p["name"],
+            )
+        )
+    idlers = [
+        Idler(
+            center=tuple(k["center"]),  # type: ignore[arg-type]
+            radius=k["radius"],
+            inertia=k["inertia"],
+            contact_stiffness=k["contact_stiffness"],
+            contact_damping=k["contact_damping"],
+            friction=_friction(k["friction"]),
+        )
+        for k in d["idlers"]
+    ]
+    return Scene(
+        belt=Belt(**d["belt"]),
+        pulleys=pulleys,
+        idlers=idlers,
+        gravity=d["gravity"],
+        solver=Solver(**d["solver"]),
+    )
 
 
 class Simulation:
@@ -147,6 +226,11 @@ class Simulation:
         tension: bool = True,
         node_position: bool = True,
         node_velocity: bool = True,
+        max_samples: Optional[int] = None,
+        max_memory: float = DEFAULT_MAX_MEMORY,
+        progress: Optional[bool] = None,
+        checkpoint: Optional[Union[str, os.PathLike]] = None,
+        checkpoint_interval: float = 600.0,
     ) -> Result:
         """Run for ``duration`` seconds and return what was recorded.
 
@@ -156,10 +240,25 @@ class Simulation:
                 ``record_interval`` is given.
             record_interval: sample about every this many seconds (rounded to whole steps).
             tension, node_position, node_velocity: record these large arrays. Default True.
+            max_samples: most recorded instants kept (>= 2). When the buffer is full, every
+                other instant is dropped and the interval doubles, so the result always
+                spans the whole run on a uniform grid (``Result.record_every`` gives the
+                final interval in steps). Default None: as many as fit in ``max_memory``.
+            max_memory: bound on the recording's memory when ``max_samples`` is None, bytes.
+                One instant takes ``8 * (8 + 5*E + 13*P + 2*I)`` bytes with every channel on
+                (E nodes, P pulleys, I idlers; tension, node_position and node_velocity
+                switched off save 8*E, 16*E and 16*E); see :meth:`sample_bytes`.
+                Default 256 MiB.
+            progress: show a progress bar on stderr (tqdm if installed, else a built-in
+                one). Default None: only when stderr is a terminal.
+            checkpoint: if given, save a checkpoint to this path (atomically) every
+                ``checkpoint_interval`` seconds of wall time, at the end, and on Ctrl-C.
+            checkpoint_interval: wall-clock seconds between checkpoints. Default 600.
 
         Returns:
-            :class:`Result`. If Ctrl-C stops the run, it holds everything recorded so far
-            and ``interrupted`` is True.
+            :class:`Result`. Ctrl-C stops the run cleanly: the Result holds everything
+            recorded so far and ``interrupted`` is True; the state stays consistent, so the
+            run can go on with another ``run``.
 
         Raises:
             beltrs.DivergenceError: the state became non-finite; the message names time,
@@ -174,21 +273,72 @@ class Simulation:
         if record_every is not None:
             if int(record_every) < 1:
                 raise _beltrs.SceneError(f"record_every = {record_every}: must be ≥ 1")
-            every = int(record_every)
+            every = min(int(record_every), _MAX_STEPS)
         elif record_interval is not None:
             if not (np.isfinite(record_interval) and record_interval > 0):
                 raise _beltrs.SceneError(f"record_interval = {record_interval}: must be > 0 (s)")
-            every = max(1, int(round(record_interval / self.dt)))
+            every = max(1, min(int(round(record_interval / self.dt)), _MAX_STEPS))
         steps = int(round(duration / self.dt))
+        if steps > _MAX_STEPS:
+            raise _beltrs.SceneError(
+                f"duration = {duration}: {steps:.3e} steps of {self.dt:.3e} s, more than {_MAX_STEPS:.3e}"
+            )
+        per_sample = self.sample_bytes(tension, node_position, node_velocity)
+        if max_samples is None:
+            if not (np.isfinite(max_memory) and max_memory > 0):
+                raise _beltrs.SceneError(f"max_memory = {max_memory}: must be a finite number > 0 (bytes)")
+            max_samples = int(max_memory // per_sample)
+            if max_samples < 2:
+                raise _beltrs.SceneError(
+                    f"max_memory = {max_memory}: must hold at least 2 samples of {per_sample} bytes"
+                )
+        elif int(max_samples) < 2:
+            raise _beltrs.SceneError(f"max_samples = {max_samples}: must be ≥ 2")
+        max_samples = min(int(max_samples), _MAX_STEPS)
+        if checkpoint is not None and not (np.isfinite(checkpoint_interval) and checkpoint_interval >= 0):
+            raise _beltrs.SceneError(f"checkpoint_interval = {checkpoint_interval}: must be ≥ 0 (s)")
+
+        core = self._core
+        target = int(core.step_count) + steps
         t0 = _time.perf_counter()
+        last_checkpoint = t0
+        interrupted = False
+        bar = make_bar(progress, steps, self.time + steps * self.dt)
         try:
-            self._core.run(steps, every, tension, node_position, node_velocity)
+            core.begin_recording(every, tension, node_position, node_velocity, max_samples)
+            try:
+                # Short chunks (about 0.1 s of wall time each) keep the bar live and let
+                # Ctrl-C in between them; each chunk runs in Rust without the GIL, and a
+                # chunk always completes, so the state is consistent when Ctrl-C lands.
+                chunk = 64
+                while int(core.step_count) < target:
+                    n = min(chunk, target - int(core.step_count))
+                    c0 = _time.perf_counter()
+                    core.advance(n)
+                    now = _time.perf_counter()
+                    chunk = _next_chunk(chunk, now - c0)
+                    bar.update(n, self.time)
+                    if checkpoint is not None and now - last_checkpoint >= checkpoint_interval:
+                        self.save_checkpoint(checkpoint)
+                        last_checkpoint = _time.perf_counter()
+            except KeyboardInterrupt:
+                interrupted = True
+            core.end_recording(interrupted)
         except _beltrs.DivergenceError as err:
             err.result = self._result(_time.perf_counter() - t0)  # type: ignore[attr-defined]
             self.last_result = err.result  # type: ignore[attr-defined]
             raise
+        finally:
+            bar.close()
+        if checkpoint is not None:
+            self.save_checkpoint(checkpoint)
         self.last_result = self._result(_time.perf_counter() - t0)
         return self.last_result
+
+    def sample_bytes(self, tension: bool = True, node_position: bool = True, node_velocity: bool = True) -> int:
+        """Bytes one recorded instant takes with these channels:
+        ``8 * (8 + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
+        return int(self._core.sample_bytes(tension, node_position, node_velocity))
 
     def _result(self, wall: float) -> Result:
         return Result._from_core(
@@ -198,7 +348,43 @@ class Simulation:
             wall_time=wall,
             interrupted=bool(self._core.interrupted),
             pulley_names=[p.name for p in self.scene.pulleys],
+            record_every=int(self._core.record_every),
         )
+
+    # --- checkpoints -------------------------------------------------------------------
+    def save_checkpoint(self, path: Union[str, os.PathLike]) -> None:
+        """Save the scene and the full state to ``path``, atomically (a temporary file in
+        the same directory, flushed to disk, then renamed over ``path``: a crash leaves the
+        old file). The recording is not saved. Format: ``docs/runtime.md``.
+
+        Raises:
+            beltrs.CheckpointError: the file cannot be written (the message names the file
+                and the cause).
+        """
+        self._core.save_checkpoint(os.fspath(path))
+
+    @classmethod
+    def load_checkpoint(cls, path: Union[str, os.PathLike], scene: Optional[Scene] = None) -> "Simulation":
+        """A simulation resumed from the checkpoint at ``path``; it continues bit-for-bit as
+        the saved one would have.
+
+        Args:
+            path: checkpoint file written by :meth:`save_checkpoint`.
+            scene: if given, the checkpoint must hold exactly this scene (e.g. the scene
+                file the run started from), else :class:`beltrs.CheckpointError` names the
+                first part that differs. Default None: the scene stored in the checkpoint
+                (including parameters changed during the run) is used.
+
+        Raises:
+            beltrs.CheckpointError: missing, truncated or corrupt file, another format
+                version, or another scene; the message names the file and the problem.
+        """
+        core = _beltrs.Simulation.load_checkpoint(os.fspath(path), None if scene is None else scene.to_dict())
+        sim = cls.__new__(cls)
+        sim._core = core
+        sim.scene = scene if scene is not None else _scene_from_dict(dict(core.scene_dict()))
+        sim.last_result = None
+        return sim
 
     def step(self, steps: int = 1) -> None:
         """Advance ``steps`` steps without recording."""

@@ -38,6 +38,15 @@ pub enum BeltError {
         /// Where, e.g. "node 17" or "pulley 0".
         location: String,
     },
+    /// A checkpoint file cannot be written, read or resumed (missing, corrupt, truncated,
+    /// another format version, or another scene).
+    #[error("checkpoint {path}: {problem}")]
+    Checkpoint {
+        /// The file.
+        path: String,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// A request that does not fit the compiled model (e.g. an unknown pulley index).
     #[error("{0}")]
     Usage(String),

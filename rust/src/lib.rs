@@ -13,6 +13,7 @@
 
 #![warn(missing_docs)]
 
+pub mod checkpoint;
 pub mod contact;
 pub mod error;
 pub mod forces;

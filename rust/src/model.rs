@@ -6,7 +6,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::geometry::BeltPath;
-use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
+use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
 
 /// One step of the force evaluation. The compiled list holds only the stages a scene needs
@@ -169,6 +169,13 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         let path = BeltPath::from_pulleys(&scene.pulleys)?;
+        if !(path.length.is_finite() && path.length > 0.0) {
+            return Err(BeltError::invalid(
+                "pulleys",
+                format!("a belt path of {} m", path.length),
+                "the path length must be finite and > 0 (centres or radii too large)",
+            ));
+        }
         let belt = &scene.belt;
         let belt_length = belt.length.unwrap_or(path.length);
         let min_radius = scene
@@ -205,7 +212,19 @@ impl Model {
         }
         let n = match belt.elements {
             Some(n) => n,
-            None => (belt_length / (belt.max_element_angle * min_radius)).ceil() as usize,
+            None => {
+                let wanted = (belt_length / (belt.max_element_angle * min_radius)).ceil();
+                if wanted > MAX_ELEMENTS as f64 {
+                    return Err(BeltError::invalid(
+                        "belt.max_element_angle",
+                        belt.max_element_angle,
+                        format!(
+                            "a {belt_length} m belt needs {wanted:e} elements of at most this arc on the smallest pulley (radius {min_radius} m), more than {MAX_ELEMENTS}; give belt.elements or check the units"
+                        ),
+                    ));
+                }
+                wanted as usize
+            }
         };
         if n < 3 {
             return Err(BeltError::invalid(
@@ -336,7 +355,9 @@ impl Model {
         if scene.belt.bending_stiffness > 0.0 {
             stages.push(Stage::Bending);
         }
-        stages.push(Stage::PulleyContact);
+        if pulleys.iter().any(|p| p.contact_stiffness > 0.0) {
+            stages.push(Stage::PulleyContact);
+        }
         if !idlers.is_empty() {
             stages.push(Stage::IdlerContact);
         }
@@ -424,7 +445,7 @@ impl Model {
         }
         self.takeup_stiffness_bound = vec![0.0; self.pulleys.len()];
         for (j, p) in self.pulleys.iter().enumerate() {
-            if let Some(t) = &p.takeup {
+            if let (Some(t), true) = (&p.takeup, p.contact_stiffness > 0.0) {
                 let wrap = self.path.wrap_angles[j];
                 let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
                 let k = nodes_on_wrap * p.contact_stiffness;

@@ -131,25 +131,111 @@ impl Recording {
         self.time.is_empty()
     }
 
-    /// Bytes held by the buffers.
+    /// Every buffer, in a fixed order (the order of [`Recording::row_widths`]).
+    fn buffers_mut(&mut self) -> [&mut Vec<f64>; 18] {
+        [
+            &mut self.time,
+            &mut self.tension,
+            &mut self.node_position,
+            &mut self.node_velocity,
+            &mut self.pulley_position,
+            &mut self.takeup_travel,
+            &mut self.pulley_speed,
+            &mut self.friction_torque,
+            &mut self.drive_torque,
+            &mut self.brake_torque,
+            &mut self.pulley_force,
+            &mut self.normal_force,
+            &mut self.friction_force,
+            &mut self.contact_nodes,
+            &mut self.slipping_nodes,
+            &mut self.idler_force,
+            &mut self.idler_speed,
+            &mut self.energy,
+        ]
+    }
+
+    /// Values each buffer gains per recorded instant, same order as the buffers.
+    fn row_widths(&self) -> [usize; 18] {
+        let (n, p, q) = (self.nodes, self.pulleys, self.idlers);
+        let c = &self.channels;
+        [
+            1,
+            if c.tension { n } else { 0 },
+            if c.node_position { 2 * n } else { 0 },
+            if c.node_velocity { 2 * n } else { 0 },
+            2 * p,
+            p,
+            p,
+            p,
+            p,
+            p,
+            2 * p,
+            p,
+            p,
+            p,
+            p,
+            q,
+            q,
+            ENERGY_COLUMNS.len(),
+        ]
+    }
+
+    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 13·p + 2·q) with all
+    /// channels on (n nodes, p pulleys, q idlers); the per-node channels that are off drop
+    /// out.
+    pub fn bytes_per_sample(&self) -> usize {
+        8 * self.row_widths().iter().sum::<usize>()
+    }
+
+    /// Make room for one more instant without letting any buffer's capacity exceed
+    /// `max_samples` instants: growth doubles as `Vec` does, but is capped at the bound, so
+    /// the memory held never exceeds `max_samples × bytes_per_sample()`.
+    pub(crate) fn reserve_one(&mut self, max_samples: usize) {
+        let rows = self.len();
+        if rows < self.time.capacity() {
+            return;
+        }
+        let target = (2 * rows).max(64).min(max_samples.max(rows + 1));
+        let widths = self.row_widths();
+        for (buf, w) in self.buffers_mut().into_iter().zip(widths) {
+            let want = target * w;
+            if want > buf.capacity() {
+                buf.reserve_exact(want - buf.len());
+            }
+        }
+    }
+
+    /// Keep every other instant (the 1st, 3rd, 5th, ...), in place. Used by the recorder
+    /// when it reaches its bound: the kept samples stay on a uniform grid of twice the
+    /// interval, covering the whole run.
+    pub fn decimate(&mut self) {
+        let rows = self.len();
+        if rows == 0 {
+            return;
+        }
+        let widths = self.row_widths();
+        for (buf, w) in self.buffers_mut().into_iter().zip(widths) {
+            let mut dst = 0;
+            for r in (0..rows).step_by(2) {
+                buf.copy_within(r * w..(r + 1) * w, dst);
+                dst += w;
+            }
+            buf.truncate(dst);
+        }
+    }
+
+    /// Bytes held by the buffers (their length, not their capacity).
     pub fn bytes(&self) -> usize {
-        8 * (self.time.len()
-            + self.tension.len()
-            + self.node_position.len()
-            + self.node_velocity.len()
-            + self.pulley_position.len()
-            + self.takeup_travel.len()
-            + self.pulley_speed.len()
-            + self.friction_torque.len()
-            + self.drive_torque.len()
-            + self.brake_torque.len()
-            + self.pulley_force.len()
-            + self.normal_force.len()
-            + self.friction_force.len()
-            + self.contact_nodes.len()
-            + self.slipping_nodes.len()
-            + self.idler_force.len()
-            + self.idler_speed.len()
-            + self.energy.len())
+        self.len() * self.bytes_per_sample()
+    }
+
+    /// Bytes allocated by the buffers (their capacity).
+    pub fn allocated_bytes(&mut self) -> usize {
+        8 * self
+            .buffers_mut()
+            .iter()
+            .map(|b| b.capacity())
+            .sum::<usize>()
     }
 }

@@ -7,6 +7,11 @@
 
 use crate::error::{BeltError, BeltResult};
 
+/// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
+/// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
+/// (e.g. a radius in millimetres), and would exhaust memory rather than fail cleanly.
+pub const MAX_ELEMENTS: usize = 1_000_000;
+
 /// Which discrete belt model to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Formulation {
@@ -42,7 +47,8 @@ pub struct BeltParams {
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
-    /// Number of elements (= number of nodes, the loop is closed). `None`: the fewest
+    /// Number of elements (= number of nodes, the loop is closed), 3 to [`MAX_ELEMENTS`].
+    /// `None`: the fewest
     /// elements whose unstretched length is at most the arc of `max_element_angle` on the
     /// smallest pulley (thesis §6.1). Default `None`.
     pub elements: Option<usize>,
@@ -288,7 +294,9 @@ pub struct PulleySpec {
     pub wrap: Wrap,
     /// Belt–pulley friction. Default frictionless.
     pub friction: FrictionModel,
-    /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Default 1e9.
+    /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Zero
+    /// switches contact with this pulley off (the belt passes through it); with zero on
+    /// every pulley no pulley-contact stage is compiled. Default 1e9.
     pub contact_stiffness: f64,
     /// Normal contact damping, N·s/m (not in the thesis). Default 0.
     pub contact_damping: f64,
@@ -561,6 +569,13 @@ impl Scene {
                     "a closed belt needs at least 3 elements",
                 ));
             }
+            if n > MAX_ELEMENTS {
+                return Err(BeltError::invalid(
+                    "belt.elements",
+                    n,
+                    format!("must be at most {MAX_ELEMENTS}"),
+                ));
+            }
         }
         check_positive("belt.max_element_angle", b.max_element_angle)?;
         if b.max_element_angle > std::f64::consts::FRAC_PI_3 {
@@ -599,7 +614,7 @@ impl Scene {
             if let Some(inertia) = p.inertia {
                 check_positive(&format!("{f}.inertia"), inertia)?;
             }
-            check_positive(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
+            check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
             if let Some(t) = &p.takeup {

@@ -133,7 +133,9 @@ impl Inertia {
             .pulleys
             .iter()
             .enumerate()
-            .map(|(j, p)| match p.takeup {
+            .map(|(j, p)| match &p.takeup {
+                // A takeup without pulley contact feels only its pull: keep its true mass.
+                Some(t) if model.takeup_stiffness_bound[j] == 0.0 => t.moving_mass,
                 Some(_) => 2.0 * model.takeup_stiffness_bound[j] * dt2,
                 None => f64::INFINITY,
             })
@@ -229,6 +231,7 @@ pub struct Simulation {
     pub recording: Recording,
     record_every: u64,
     record_counter: u64,
+    max_samples: usize,
     /// Per-stage wall time, s (same order as `model.stages`), when profiling is on.
     pub profile: Option<Vec<f64>>,
 }
@@ -241,7 +244,9 @@ impl Simulation {
         Ok(Self::from_parts(model, state))
     }
 
-    fn from_parts(model: Model, state: State) -> Simulation {
+    /// A simulation of `model` at `state` (e.g. read back from a checkpoint). The state's
+    /// array lengths must match the model (checked by the checkpoint reader).
+    pub(crate) fn from_parts(model: Model, state: State) -> Simulation {
         let scratch = Scratch::new(&model);
         let inertia = Inertia::physical(&model);
         let recording = Recording::new(
@@ -258,6 +263,7 @@ impl Simulation {
             recording,
             record_every: 1,
             record_counter: 0,
+            max_samples: usize::MAX,
             profile: None,
         }
     }
@@ -361,6 +367,10 @@ impl Simulation {
                 Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
                 Stage::PulleyContact => {
                     for (j, p) in m.pulleys.iter().enumerate() {
+                        // Zero stiffness: the belt passes through this pulley (no contact).
+                        if p.contact_stiffness == 0.0 {
+                            continue;
+                        }
                         let body = PulleyBody {
                             center: s.pulley_center(m, j),
                             center_velocity: s.pulley_center_velocity(m, j),
@@ -546,7 +556,7 @@ impl Simulation {
             s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
             s.pulley_omega[j] = new;
             s.pulley_angle[j] += new * dt;
-            check += new;
+            check += new + s.pulley_angle[j];
             if let Some(t) = &p.takeup {
                 let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
                 s.takeup_speed[j] += dt * f / self.inertia.takeup_mass[j];
@@ -567,6 +577,7 @@ impl Simulation {
         }
         s.time += dt;
         s.step += 1;
+        check += s.drive_work;
         if !check.is_finite() {
             return Err(self.locate_non_finite());
         }
@@ -602,6 +613,9 @@ impl Simulation {
             if !s.pulley_omega[j].is_finite() {
                 return diverged("angular speed", format!("pulley {}", p.name));
             }
+            if !s.pulley_angle[j].is_finite() {
+                return diverged("rotation angle", format!("pulley {}", p.name));
+            }
             if !s.takeup_travel[j].is_finite() || !s.takeup_speed[j].is_finite() {
                 return diverged("takeup travel", format!("pulley {}", p.name));
             }
@@ -610,6 +624,9 @@ impl Simulation {
             if !s.idler_omega[k].is_finite() {
                 return diverged("angular speed", format!("idler {k}"));
             }
+        }
+        if !s.drive_work.is_finite() {
+            return diverged("work done", "the drives".to_string());
         }
         diverged("energy", "the model".to_string())
     }
@@ -623,8 +640,12 @@ impl Simulation {
         Ok(())
     }
 
-    /// Start a new recording: the state is sampled now and every `every` steps.
-    pub fn begin_recording(&mut self, channels: Channels, every: u64) {
+    /// Start a new recording: the state is sampled now and every `every` steps, keeping at
+    /// most `max_samples` instants (≥ 2). When the buffer is full, every other instant is
+    /// dropped and the interval doubles ([`Recording::decimate`]), so the recording always
+    /// spans the whole run on a uniform grid and its memory stays below
+    /// `max_samples × Recording::bytes_per_sample()`.
+    pub fn begin_recording(&mut self, channels: Channels, every: u64, max_samples: usize) {
         self.recording = Recording::new(
             channels,
             self.model.nodes,
@@ -633,6 +654,34 @@ impl Simulation {
         );
         self.record_every = every.max(1);
         self.record_counter = 0;
+        self.max_samples = max_samples.max(2);
+    }
+
+    /// Steps between recorded instants now (the requested interval, doubled at each
+    /// decimation).
+    pub fn record_every(&self) -> u64 {
+        self.record_every
+    }
+
+    /// Bound on the number of recorded instants of the current recording.
+    pub fn max_samples(&self) -> usize {
+        self.max_samples
+    }
+
+    /// Sample if the step counter is on the recording grid, decimating first when full.
+    fn record_if_due(&mut self) {
+        if !self.record_counter.is_multiple_of(self.record_every) {
+            return;
+        }
+        if self.recording.len() >= self.max_samples {
+            self.recording.decimate();
+            self.record_every = self.record_every.saturating_mul(2);
+            if !self.record_counter.is_multiple_of(self.record_every) {
+                return;
+            }
+        }
+        self.recording.reserve_one(self.max_samples);
+        self.sample();
     }
 
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
@@ -640,9 +689,7 @@ impl Simulation {
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
         for _ in 0..steps {
             self.evaluate(Effects::ALL);
-            if self.record_counter.is_multiple_of(self.record_every) {
-                self.sample();
-            }
+            self.record_if_due();
             self.record_counter += 1;
             self.integrate()?;
         }
@@ -653,11 +700,13 @@ impl Simulation {
     pub fn end_recording(&mut self) {
         if self.record_counter.is_multiple_of(self.record_every) {
             self.evaluate(Effects::ALL);
-            self.sample();
+            self.record_if_due();
         }
     }
 
     /// Run for `duration` seconds (rounded to whole steps), sampling every `every` steps.
+    /// The recording is unbounded here; use [`Simulation::begin_recording`] with a bound for
+    /// long runs.
     pub fn run(&mut self, duration: f64, every: u64, channels: Channels) -> BeltResult<&Recording> {
         if !(duration.is_finite() && duration >= 0.0) {
             return Err(BeltError::invalid(
@@ -667,7 +716,7 @@ impl Simulation {
             ));
         }
         let steps = (duration / self.model.dt).round() as u64;
-        self.begin_recording(channels, every);
+        self.begin_recording(channels, every, usize::MAX);
         self.advance(steps)?;
         self.end_recording();
         Ok(&self.recording)

@@ -3,6 +3,8 @@
 mod common;
 
 mod case_h_statics;
+mod checkpoint;
 mod friction_contact;
 mod kernels;
+mod recorder;
 mod recording_params;

@@ -2,6 +2,7 @@
 //! call the core, and convert results and errors back. No panic crosses into Python.
 
 mod scene_dict;
+mod scene_out;
 
 use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
@@ -12,6 +13,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
 
 create_exception!(
     _beltrs,
@@ -38,12 +40,20 @@ create_exception!(
     "The state became non-finite during a run; results recorded before are kept."
 );
 
+create_exception!(
+    _beltrs,
+    CheckpointError,
+    BeltrsError,
+    "A checkpoint cannot be written, read or resumed; the message names the file and the problem."
+);
+
 fn to_py(err: BeltError) -> PyErr {
     let msg = err.to_string();
     match err {
         BeltError::InvalidParameter { .. } => SceneError::new_err(msg),
         BeltError::TimeStepTooLarge { .. } => TimeStepError::new_err(msg),
         BeltError::Diverged { .. } => DivergenceError::new_err(msg),
+        BeltError::Checkpoint { .. } => CheckpointError::new_err(msg),
         BeltError::Usage(_) => BeltrsError::new_err(msg),
     }
 }
@@ -210,7 +220,8 @@ impl PySimulation {
     /// Advance `steps` steps, sampling every `every` steps into a fresh recording. Checks
     /// for Ctrl-C every `chunk` steps; on Ctrl-C stops and keeps what was recorded. A
     /// blow-up raises DivergenceError and keeps the recording.
-    #[pyo3(signature = (steps, every=1, tension=true, node_position=true, node_velocity=true, chunk=4096))]
+    /// At most `max_samples` instants are kept (see `begin_recording`).
+    #[pyo3(signature = (steps, every=1, tension=true, node_position=true, node_velocity=true, chunk=4096, max_samples=usize::MAX))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
@@ -221,6 +232,7 @@ impl PySimulation {
         node_position: bool,
         node_velocity: bool,
         chunk: u64,
+        max_samples: usize,
     ) -> PyResult<()> {
         if every == 0 {
             return Err(SceneError::new_err("every = 0: must be ≥ 1"));
@@ -233,7 +245,7 @@ impl PySimulation {
         self.interrupted = false;
         let chunk = chunk.max(1);
         guarded(|| {
-            self.inner.begin_recording(channels, every);
+            self.inner.begin_recording(channels, every, max_samples);
             let mut done = 0;
             while done < steps {
                 let n = chunk.min(steps - done);
@@ -248,6 +260,129 @@ impl PySimulation {
             self.inner.end_recording();
             Ok(())
         })
+    }
+
+    /// Start a fresh recording, sampled now and every `every` steps, keeping at most
+    /// `max_samples` (≥ 2) instants: when full, every other instant is dropped and the
+    /// interval doubles.
+    #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX))]
+    fn begin_recording(
+        &mut self,
+        every: u64,
+        tension: bool,
+        node_position: bool,
+        node_velocity: bool,
+        max_samples: usize,
+    ) -> PyResult<()> {
+        if every == 0 {
+            return Err(SceneError::new_err("every = 0: must be ≥ 1"));
+        }
+        if max_samples < 2 {
+            return Err(SceneError::new_err(format!(
+                "max_samples = {max_samples}: must be ≥ 2"
+            )));
+        }
+        let channels = Channels {
+            tension,
+            node_position,
+            node_velocity,
+        };
+        self.interrupted = false;
+        self.inner.begin_recording(channels, every, max_samples);
+        Ok(())
+    }
+
+    /// Advance `steps` steps into the current recording (GIL released; no signal checks:
+    /// callers keep chunks short). A blow-up raises DivergenceError and keeps the recording.
+    fn advance(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
+        let sim = &mut self.inner;
+        guarded(|| py.detach(|| sim.advance(steps)).map_err(to_py))
+    }
+
+    /// Close the current recording (samples the final state if it is on the grid).
+    /// `interrupted` is stored for the `interrupted` getter.
+    #[pyo3(signature = (interrupted=false))]
+    fn end_recording(&mut self, interrupted: bool) -> PyResult<()> {
+        self.interrupted = interrupted;
+        let sim = &mut self.inner;
+        guarded(|| {
+            sim.end_recording();
+            Ok(())
+        })
+    }
+
+    /// Steps between recorded instants now (doubled at each decimation).
+    #[getter]
+    fn record_every(&self) -> u64 {
+        self.inner.record_every()
+    }
+
+    /// Bytes one recorded instant takes with the current channels.
+    #[getter]
+    fn bytes_per_sample(&self) -> usize {
+        self.inner.recording.bytes_per_sample()
+    }
+
+    /// Bytes one instant would take with these channels.
+    fn sample_bytes(&self, tension: bool, node_position: bool, node_velocity: bool) -> usize {
+        let m = &self.inner.model;
+        let r = Recording::new(
+            Channels {
+                tension,
+                node_position,
+                node_velocity,
+            },
+            m.nodes,
+            m.pulleys.len(),
+            m.idlers.len(),
+        );
+        r.bytes_per_sample()
+    }
+
+    /// Bytes allocated by the recording buffers (capacity).
+    fn recording_allocated_bytes(&mut self) -> usize {
+        self.inner.recording.allocated_bytes()
+    }
+
+    /// Save the scene and the full state to `path` atomically (see `beltrs.checkpoint`).
+    fn save_checkpoint(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let sim = &self.inner;
+        guarded(|| {
+            py.detach(|| crate::checkpoint::save(sim, &path))
+                .map_err(to_py)
+        })
+    }
+
+    /// A simulation read back from the checkpoint at `path`. With `scene` (dict form) the
+    /// checkpoint must hold exactly that scene.
+    #[staticmethod]
+    #[pyo3(signature = (path, scene=None))]
+    fn load_checkpoint(
+        py: Python<'_>,
+        path: PathBuf,
+        scene: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        guarded(|| {
+            let expected = match scene {
+                Some(d) => Some(scene_dict::scene_from_dict(d).map_err(to_py)?),
+                None => None,
+            };
+            let inner = py
+                .detach(|| match &expected {
+                    Some(s) => crate::checkpoint::load_for(&path, s),
+                    None => crate::checkpoint::load(&path),
+                })
+                .map_err(to_py)?;
+            Ok(PySimulation {
+                inner,
+                interrupted: false,
+            })
+        })
+    }
+
+    /// The scene of the compiled model, in dict form (the keys of `Scene.to_dict()`).
+    fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        scene_out::scene_to_dict(py, &self.inner.model.scene)
     }
 
     /// Advance `steps` steps without recording.
@@ -286,6 +421,16 @@ impl PySimulation {
         d.set_item("takeup_speed", PyArray1::from_slice(py, &s.takeup_speed))?;
         d.set_item("idler_speed", PyArray1::from_slice(py, &s.idler_omega))?;
         d.set_item("drive_work", s.drive_work)?;
+        let windows: Vec<f64> = s
+            .pulley_window
+            .iter()
+            .flat_map(|w| [w.first as f64, w.len as f64])
+            .collect();
+        d.set_item(
+            "pulley_window",
+            array(py, &windows, &[s.pulley_window.len(), 2])?,
+        )?;
+        d.set_item("idler_element", s.idler_element.clone())?;
         Ok(d)
     }
 
@@ -384,6 +529,7 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;
     m.add("DivergenceError", m.py().get_type::<DivergenceError>())?;
+    m.add("CheckpointError", m.py().get_type::<CheckpointError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
