@@ -39,7 +39,7 @@ from dataclasses import replace
 from typing import Callable
 
 import beltrs
-from beltrs import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
+from beltrs import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Takeup
 
 EFFECTS = [
     "gravity",
@@ -84,7 +84,9 @@ def case_h(on: frozenset, off: frozenset = frozenset()) -> Scene:
     )
     k = 2e8 if "pulley_contact" in on else 0.0
     mu = Friction(0.5, 0.4) if "pulley_friction" in on else (Friction(0.0) if "pulley_friction" in off else None)
-    upper = Pulley(name="upper", center=(0.0, 100.0), radius=5.0, mass=600.0, inertia=15_000.0, contact_stiffness=k, friction=mu)
+    upper = Pulley(
+        name="upper", center=(0.0, 100.0), radius=5.0, mass=600.0, inertia=15_000.0, contact_stiffness=k, friction=mu
+    )
     lower = replace(upper, name="lower", center=(0.0, 0.0))
     if "takeup" in on:
         lower.takeup = Takeup(counterweight=30_000.0)
@@ -237,7 +239,8 @@ def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: f
         )
         r = rows[-1]
         print(
-            f"{case:9s} {effect:16s} ref {1e6 * r['ref']:9.2f} us  off/ref {r['off_ratio']:6.3f} (IQR {r['off_iqr']:.3f})  "
+            f"{case:9s} {effect:16s} ref {1e6 * r['ref']:9.2f} us  "
+            f"off/ref {r['off_ratio']:6.3f} (IQR {r['off_iqr']:.3f})  "
             f"on {1e6 * r['on']:9.2f} us  "
             f"+{1e6 * r['increment']:8.2f} us  profile {1e6 * r['profile']:8.2f} us",
             flush=True,
@@ -247,13 +250,15 @@ def effect_table(case: str, build: Callable[..., Scene], repeats: int, budget: f
 
 def markdown(rows: list[dict]) -> str:
     out = [
-        "| case | effect | ref µs/step | off/ref (IQR) | on µs/step | increment µs | stage profile µs | increment/profile |",
+        "| case | effect | ref µs/step | off/ref (IQR) | on µs/step | increment µs "
+        "| stage profile µs | increment/profile |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         ratio = r["increment"] / r["profile"] if r["profile"] > 0 else float("nan")
         out.append(
-            f"| {r['case']} | {r['effect']} | {1e6 * r['ref']:.2f} | {r['off_ratio']:.3f} ({r['off_iqr']:.3f}) | {1e6 * r['on']:.2f} | "
+            f"| {r['case']} | {r['effect']} | {1e6 * r['ref']:.2f} "
+            f"| {r['off_ratio']:.3f} ({r['off_iqr']:.3f}) | {1e6 * r['on']:.2f} | "
             f"{1e6 * r['increment']:+.2f} | {1e6 * r['profile']:.2f} | {ratio:.2f} |"
         )
     return "\n".join(out)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import Drive, Pulley, SceneError, TimeStepError
+from beltrs import Pulley, SceneError, TimeStepError
 from beltrs.scenes import hustrulid_loop
 
 
@@ -91,7 +91,8 @@ def test_blow_up_stops_with_error_and_keeps_results():
     scene.gravity = 1e250
     sim.set_scene(scene)
     with pytest.raises(
-        beltrs.DivergenceError, match=r"non-finite at t = [0-9.e-]+ s \(step \d+\): (position|velocity|force) [xy] of node \d+"
+        beltrs.DivergenceError,
+        match=r"non-finite at t = [0-9.e-]+ s \(step \d+\): (position|velocity|force) [xy] of node \d+",
     ) as err:
         sim.run(1.0, record_every=1)
     partial = err.value.result

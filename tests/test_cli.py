@@ -105,7 +105,9 @@ def test_check_prints_the_stages(tmp_path, capsys):
 
 
 def run_process(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "beltrs", *args], cwd=cwd, capture_output=True, text=True, timeout=120, check=False)
+    return subprocess.run(
+        [sys.executable, "-m", "beltrs", *args], cwd=cwd, capture_output=True, text=True, timeout=120, check=False
+    )
 
 
 def test_python_m_beltrs_run_in_a_subprocess(tmp_path):
@@ -132,7 +134,9 @@ def test_console_script(tmp_path):
     script = Path(sys.executable).with_name("beltrs")
     if not script.exists():
         pytest.skip("the beltrs console script is not installed next to this Python")
-    proc = subprocess.run([str(script), "check", str(EXAMPLES / "case_h.toml")], capture_output=True, text=True, timeout=120, check=False)
+    proc = subprocess.run(
+        [str(script), "check", str(EXAMPLES / "case_h.toml")], capture_output=True, text=True, timeout=120, check=False
+    )
     assert proc.returncode == 0 and "valid; 89 nodes" in proc.stdout
 
 

@@ -255,7 +255,9 @@ def test_huge_element_count_is_refused_not_allocated(elements):
 def test_tiny_radius_asking_for_too_many_elements_is_refused():
     scene = _two_pulleys()
     scene["pulleys"][0]["radius"] = 1e-300
-    with pytest.raises(BeltrsError, match=r"belt\.max_element_angle = 0\.52\d+: .* more than 1000000; give belt\.elements"):
+    with pytest.raises(
+        BeltrsError, match=r"belt\.max_element_angle = 0\.52\d+: .* more than 1000000; give belt\.elements"
+    ):
         _beltrs.Simulation(scene)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
+from beltrs import Belt, Brake, Drive, Friction, Pulley, Scene, Takeup
 
 G = 9.81
 

@@ -23,8 +23,12 @@ def everything() -> Scene:
     scene = hustrulid_loop(89, friction=Friction(static=0.5, kinetic=0.4), damping_ratio=0.01)
     scene.pulleys[0].name = 'upper "U" \\ ünïcode\ttab'
     scene.pulleys[0].drive = Drive(
-        time=[0.0, 0.07, 0.070000001], torque=[4e5, 4e5, 0.0], speed=[-10.0, 0.0, 10.0],
-        speed_factor=[1.0, 1.0, 0.5], viscous=12.5, inertia=3.25,
+        time=[0.0, 0.07, 0.070000001],
+        torque=[4e5, 4e5, 0.0],
+        speed=[-10.0, 0.0, 10.0],
+        speed_factor=[1.0, 1.0, 0.5],
+        viscous=12.5,
+        inertia=3.25,
     )
     scene.pulleys[0].brake = Brake(time=[0.0, 1.0], capacity=[0.0, 1e5])
     scene.pulleys[1].takeup = Takeup(counterweight=30_000.0, travel_min=-10.0, travel_max=0.1)
@@ -108,16 +112,28 @@ finite = st.floats(allow_nan=False, allow_infinity=False)
 def test_any_values_round_trip_exactly(values, name, elements, table):
     scene = Scene(
         belt=Belt(axial_stiffness=values[0], damping_ratio=values[1], elements=elements),
-        pulleys=[Pulley(name=name, center=(values[2], values[3]), mass=values[4],
-                        drive=Drive(time=table, torque=table[::-1]))],
+        pulleys=[
+            Pulley(
+                name=name, center=(values[2], values[3]), mass=values[4], drive=Drive(time=table, torque=table[::-1])
+            )
+        ],
         idlers=[Idler(center=(values[5], 0.0), radius=values[6])],
         gravity=values[6],
     )
     loaded = Scene.from_toml(scene.to_toml())
     assert loaded == scene
     # Equality holds for -0.0 == 0.0; the text must keep the sign too.
-    for x, y in zip(values, (loaded.belt.axial_stiffness, loaded.belt.damping_ratio, *loaded.pulleys[0].center,
-                             loaded.pulleys[0].mass, loaded.idlers[0].center[0], loaded.idlers[0].radius)):
+    for x, y in zip(
+        values,
+        (
+            loaded.belt.axial_stiffness,
+            loaded.belt.damping_ratio,
+            *loaded.pulleys[0].center,
+            loaded.pulleys[0].mass,
+            loaded.idlers[0].center[0],
+            loaded.idlers[0].radius,
+        ),
+    ):
         assert repr(x) == repr(y)
 
 
@@ -133,14 +149,31 @@ CASE_H = hustrulid_loop().to_toml()
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        (CASE_H.replace("radius = 5.0", "radious = 5.0", 1),
-         r"<string>: pulleys\[0\]\.radious = 'radious': unknown key, did you mean 'radius'\? \(known keys here: brake, "),
-        (CASE_H.replace("counterweight =", "conterweight ="),
-         r"pulleys\[1\]\.takeup\.conterweight = 'conterweight': unknown key, did you mean 'counterweight'\?"),
-        (CASE_H.replace("gravity =", "gravitation ="), r"^<string>: gravitation = 'gravitation': unknown key, did you mean 'gravity'\?"),
-        (CASE_H.replace("[solver]", "[solver]\nxyzzy = 1"), r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: time_step, time_step_fraction\)"),
-        (CASE_H.replace("stabilise = true", "stabilize = true"), r"recording\.stabilize = 'stabilize': unknown key, did you mean 'stabilise'\?"),
-        (CASE_H + "\n[[idlers]]\ncentre = [1.0, 2.0]\n", r"idlers\[0\]\.centre = 'centre': unknown key, did you mean 'center'\?"),
+        (
+            CASE_H.replace("radius = 5.0", "radious = 5.0", 1),
+            r"<string>: pulleys\[0\]\.radious = 'radious': unknown key, did you mean 'radius'\? "
+            r"\(known keys here: brake, ",
+        ),
+        (
+            CASE_H.replace("counterweight =", "conterweight ="),
+            r"pulleys\[1\]\.takeup\.conterweight = 'conterweight': unknown key, did you mean 'counterweight'\?",
+        ),
+        (
+            CASE_H.replace("gravity =", "gravitation ="),
+            r"^<string>: gravitation = 'gravitation': unknown key, did you mean 'gravity'\?",
+        ),
+        (
+            CASE_H.replace("[solver]", "[solver]\nxyzzy = 1"),
+            r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: time_step, time_step_fraction\)",
+        ),
+        (
+            CASE_H.replace("stabilise = true", "stabilize = true"),
+            r"recording\.stabilize = 'stabilize': unknown key, did you mean 'stabilise'\?",
+        ),
+        (
+            CASE_H + "\n[[idlers]]\ncentre = [1.0, 2.0]\n",
+            r"idlers\[0\]\.centre = 'centre': unknown key, did you mean 'center'\?",
+        ),
     ],
 )
 def test_unknown_keys_name_the_path_and_suggest(text, message):
@@ -155,15 +188,22 @@ def test_unknown_keys_name_the_path_and_suggest(text, message):
         (CASE_H.replace("elements = 89", "elements = 89.0"), r"belt\.elements = 89\.0: expected a whole number"),
         (CASE_H.replace("tension_only = false", "tension_only = 0"), r"belt\.tension_only = 0: expected true or false"),
         (CASE_H.replace("mass = 600.0", "mass = true", 1), r"pulleys\[0\]\.mass = True: expected a number"),
-        (CASE_H.replace("center = [0.0, 100.0]", "center = [0.0, 100.0, 1.0]"),
-         r"pulleys\[0\]\.center = \[0\.0, 100\.0, 1\.0\]: expected \[x, y\]"),
-        (CASE_H.replace("center = [0.0, 100.0]", 'center = [0.0, "up"]'), r"pulleys\[0\]\.center\[1\] = 'up': expected a number"),
+        (
+            CASE_H.replace("center = [0.0, 100.0]", "center = [0.0, 100.0, 1.0]"),
+            r"pulleys\[0\]\.center = \[0\.0, 100\.0, 1\.0\]: expected \[x, y\]",
+        ),
+        (
+            CASE_H.replace("center = [0.0, 100.0]", 'center = [0.0, "up"]'),
+            r"pulleys\[0\]\.center\[1\] = 'up': expected a number",
+        ),
         (CASE_H.replace('name = "upper"', "name = 7"), r"pulleys\[0\]\.name = 7: expected a string"),
         ("belt = 3\n", r"^<string>: belt = 3: expected a table$"),
         ("pulleys = 5\n", r"pulleys = 5: expected a list of tables"),
         ("pulleys = [5]\n", r"pulleys\[0\] = 5: expected a table"),
-        (CASE_H.replace('channels = ["tension", "node_position", "node_velocity"]', "channels = \"tension\""),
-         r"recording\.channels = 'tension': expected a list of strings"),
+        (
+            CASE_H.replace('channels = ["tension", "node_position", "node_velocity"]', 'channels = "tension"'),
+            r"recording\.channels = 'tension': expected a list of strings",
+        ),
         ("[pulleys]\n[pulleys.drive]\ntime = 1.0\n", r"pulleys = \{'drive'.*expected a list of tables"),
     ],
 )
@@ -218,9 +258,16 @@ def python_error(d) -> str:
 
 @pytest.mark.parametrize(
     ("where", "typo"),
-    [((), "gravty"), (("belt",), "mass_per_lenght"), (("pulleys", 0), "contact_stifness"),
-     (("pulleys", 1, "takeup"), "travel"), (("pulleys", 0, "friction"), "kinetik"), (("solver",), "dt"),
-     (("recording",), "chanels"), (("idlers", 0), "raduis")],
+    [
+        ((), "gravty"),
+        (("belt",), "mass_per_lenght"),
+        (("pulleys", 0), "contact_stifness"),
+        (("pulleys", 1, "takeup"), "travel"),
+        (("pulleys", 0, "friction"), "kinetik"),
+        (("solver",), "dt"),
+        (("recording",), "chanels"),
+        (("idlers", 0), "raduis"),
+    ],
 )
 def test_engine_and_python_readers_agree_on_unknown_keys(where, typo):
     d = everything().to_dict()
@@ -266,7 +313,9 @@ def test_engine_checks_the_recording_table():
 
 def test_friction_model_none_refuses_coefficients():
     scene = hustrulid_loop(friction=Friction(static=0.5, model="none"))
-    with pytest.raises(SceneError, match=r'pulleys\[0\]\.friction\.static = 0\.5: friction model "none" takes no coefficients'):
+    with pytest.raises(
+        SceneError, match=r'pulleys\[0\]\.friction\.static = 0\.5: friction model "none" takes no coefficients'
+    ):
         beltrs.Simulation(scene)
     # Without coefficients it is accepted and compiles no friction stage.
     sim = beltrs.Simulation(hustrulid_loop(friction=Friction(model="none")))
@@ -276,7 +325,8 @@ def test_friction_model_none_refuses_coefficients():
 def test_recording_run_kwargs():
     assert Recording().run_kwargs() == dict(tension=True, node_position=True, node_velocity=True, record_interval=0.01)
     assert Recording(every=5, channels=("tension",)).run_kwargs() == dict(
-        tension=True, node_position=False, node_velocity=False, record_every=5)
+        tension=True, node_position=False, node_velocity=False, record_every=5
+    )
     assert Recording(interval=0.5).run_kwargs()["record_interval"] == 0.5
 
 

@@ -95,7 +95,9 @@ class Profile:
             j = i + 1
             if j < n - 1 and tangent[j] > 0:
                 r = radii[j - 1]
-                pieces.append(_Piece(v[j] - dirs[i] * tangent[j], dirs[i], float(r * abs(turn[j])), math.copysign(1 / r, turn[j])))
+                pieces.append(
+                    _Piece(v[j] - dirs[i] * tangent[j], dirs[i], float(r * abs(turn[j])), math.copysign(1 / r, turn[j]))
+                )
         self.vertices = v
         self.curve_radii = radii
         self._pieces = pieces

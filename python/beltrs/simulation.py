@@ -12,7 +12,7 @@ import numpy as np
 from . import _beltrs
 from ._progress import make_bar
 from .result import Result
-from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Solver, Takeup
+from .scene import Drive, Friction, Scene
 
 __all__ = ["DEFAULT_MAX_MEMORY", "Simulation"]
 
@@ -29,69 +29,6 @@ def _next_chunk(chunk: int, seconds: float) -> int:
         return min(chunk * 4, 1 << 40)
     wanted = int(chunk * _CHUNK_SECONDS / seconds)
     return max(1, chunk // 4, min(wanted, 4 * chunk, 1 << 40))
-
-
-def _friction(d: Optional[dict[str, Any]]) -> Optional[Friction]:
-    if d is None:
-        return None
-    return Friction(static=d["static"], kinetic=d["kinetic"], model=d["model"])
-
-
-def _scene_from_dict(d: dict[str, Any]) -> Scene:
-    """A :class:`Scene` from the engine's dict form (as stored in a checkpoint)."""
-    pulleys = []
-    for p in d["pulleys"]:
-        t, dr, br = p["takeup"], p["drive"], p["brake"]
-        pulleys.append(
-            Pulley(
-                center=tuple(p["center"]),  # type: ignore[arg-type]
-                radius=p["radius"],
-                mass=p["mass"],
-                inertia=p["inertia"],
-                wrap=p["wrap"],
-                friction=_friction(p["friction"]),
-                contact_stiffness=p["contact_stiffness"],
-                contact_damping=p["contact_damping"],
-                takeup=None
-                if t is None
-                else Takeup(
-                    counterweight=t["counterweight"],
-                    direction=tuple(t["direction"]),  # type: ignore[arg-type]
-                    travel_min=t["travel_min"],
-                    travel_max=t["travel_max"],
-                ),
-                drive=None
-                if dr is None
-                else Drive(
-                    time=list(dr["time"]),
-                    torque=list(dr["torque"]),
-                    speed=dr.get("speed"),
-                    speed_factor=dr.get("speed_factor"),
-                    viscous=dr["viscous"],
-                    inertia=dr["inertia"],
-                ),
-                brake=None if br is None else Brake(time=list(br["time"]), capacity=list(br["capacity"])),
-                name=p["name"],
-            )
-        )
-    idlers = [
-        Idler(
-            center=tuple(k["center"]),  # type: ignore[arg-type]
-            radius=k["radius"],
-            inertia=k["inertia"],
-            contact_stiffness=k["contact_stiffness"],
-            contact_damping=k["contact_damping"],
-            friction=_friction(k["friction"]),
-        )
-        for k in d["idlers"]
-    ]
-    return Scene(
-        belt=Belt(**d["belt"]),
-        pulleys=pulleys,
-        idlers=idlers,
-        gravity=d["gravity"],
-        solver=Solver(**d["solver"]),
-    )
 
 
 class Simulation:
@@ -382,7 +319,7 @@ class Simulation:
         core = _beltrs.Simulation.load_checkpoint(os.fspath(path), None if scene is None else scene.to_dict())
         sim = cls.__new__(cls)
         sim._core = core
-        sim.scene = scene if scene is not None else _scene_from_dict(dict(core.scene_dict()))
+        sim.scene = scene if scene is not None else Scene.from_dict(dict(core.scene_dict()))
         sim.last_result = None
         return sim
 
