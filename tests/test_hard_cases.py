@@ -394,3 +394,69 @@ def test_takeup_slams_into_its_stop_during_a_start():
     # The impact is inelastic (the stop absorbs the takeup's kinetic energy); nothing
     # gains energy and the run stays finite.
     assert_energy_bounded(res)
+
+
+# --- 7. Lift-off -----------------------------------------------------------------------
+
+
+def roll_gaps(x: np.ndarray, centres: np.ndarray, roll_radius: float) -> np.ndarray:
+    """Clearance between the belt centre line (the closed polygon of nodes `x`) and each
+    roll, m: distance from the roll centre to the nearest element, minus the roll radius."""
+    a, d = x, np.roll(x, -1, axis=0) - x
+    rel = centres[:, None, :] - a[None, :, :]
+    t = np.clip((rel * d).sum(axis=2) / (d * d).sum(axis=1), 0.0, 1.0)
+    foot = a[None, :, :] + d[None, :, :] * t[..., None]
+    return np.linalg.norm(foot - centres[:, None, :], axis=2).min(axis=1) - roll_radius
+
+
+def test_belt_lifts_off_a_concave_curve_in_a_fast_start_and_lands_back():
+    # Carry strand level, then up a 40 m concave curve onto a 5° incline (idlers placed
+    # along the profile by beltrs.layout). On the curve the idlers carry the belt only
+    # while T < ρ·g·R_c = 7.85 kN (a taut string on a concave arc pulls off it above that);
+    # at rest T ≈ 5.1 kN. A fast start (30 kN·m in 0.1 s on a motor line to 2 rad/s) raises
+    # it beyond for a few tenths of a second.
+    rho, radius_c, roll = 20.0, 40.0, 0.0635
+    drive = Drive(time=[0.0, 0.1], torque=[0.0, -3e4], speed=[-2.0, 0.0], speed_factor=[0.0, 1.0])
+    scene = beltrs.scenes.concave_conveyor(drive=drive, curve_radius=radius_c)
+    sim = beltrs.Simulation(scene)
+    sim.stabilise()
+    res = sim.run(4.0, record_interval=0.005)
+    centres = np.array([d.center for d in scene.idlers])
+    carry = centres[:, 1] > 0.5
+    half = radius_c * np.tan(np.radians(5.0) / 2)  # tangent length of the curve
+    curve = carry & (np.abs(centres[:, 0] - 30.0) < half)
+    level = carry & (centres[:, 0] > 3.0) & (centres[:, 0] < 25.0)
+    assert curve.sum() >= 3
+    gap_curve = np.array([roll_gaps(x, centres[curve], roll) for x in res.node_position])
+    gap_level = np.array([roll_gaps(x, centres[level], roll) for x in res.node_position])
+    # Carry tension at the curve: the elements within 1 m of its vertex.
+    mid = 0.5 * (res.node_position + np.roll(res.node_position, -1, axis=1))
+    near = (np.abs(mid[..., 0] - 30.0) < 1.0) & (mid[..., 1] > 0.3)
+    tension = np.where(near, res.tension, 0.0).sum(axis=1) / near.sum(axis=1)
+    limit = rho * G * radius_c
+    # At rest the belt lies on every roll of the curve.
+    assert tension[0] < 0.8 * limit
+    assert gap_curve[0].max() < 1e-4
+    # The start lifts it clear of the curve's rolls by a centimetre...
+    lifted = gap_curve.max(axis=1) > 0.008
+    assert lifted.any()
+    # ... only after the tension has passed ρ·g·R_c: every lifted sample follows, within
+    # 0.15 s (the belt's transverse inertia), a moment above 95 % of the limit.
+    window = int(round(0.15 / (res.time[1] - res.time[0])))
+    recent = np.array([tension[max(0, i - window) : i + 1].max() for i in range(len(tension))])
+    assert np.all(recent[lifted] > 0.95 * limit)
+    # The level strand on the same belt stays on its rolls, up to the rattle of a polygonal
+    # belt running over them: each passing node lifts it by about (ρ·g·pitch/T)·l/4, 2.5 mm
+    # at T = 5.1 kN, l = 0.26 m (docs/stability.md).
+    element = sim.node_mass[0] / rho  # m (node mass = ρ·l)
+    rattle = rho * G * 1.0 / tension[0] * element / 4
+    assert gap_level.max() < rattle < 0.4 * gap_curve.max()
+    # ... and it lands back: once the tension has stayed below 80 % of the limit for 0.3 s
+    # (the running belt's tension still swings by ±2 kN), it lies on the curve again, up to
+    # twice the rattle (the rolls on the curve carry less, ρ·g − T/R_c per metre).
+    settle = int(round(0.3 / (res.time[1] - res.time[0])))
+    calm = np.array([tension[max(0, i - settle) : i + 1].max() < 0.8 * limit for i in range(len(tension))])
+    landed = calm & (np.arange(len(tension)) > np.argmax(lifted))
+    assert landed.sum() > 20
+    assert gap_curve[landed].max() < 2 * rattle
+    assert_energy_bounded(res)

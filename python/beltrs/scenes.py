@@ -181,9 +181,9 @@ def concave_conveyor(
     flat: float = 30.0,
     incline_length: float = 40.0,
     incline: float = math.radians(5.0),
-    curve_radius: float = 100.0,
+    curve_radius: float = 40.0,
     pulley_radius: float = 1.0,
-    carry_pitch: float = 1.5,
+    carry_pitch: float = 1.0,
     return_pitch: float = 4.0,
     counterweight: float = 1000.0,
     drive: Optional[Drive] = None,
@@ -198,12 +198,16 @@ def concave_conveyor(
     pulley ("head"), which is driven clockwise. Carry idlers follow that profile every
     ``carry_pitch`` m; return idlers follow it one pulley diameter lower every
     ``return_pitch`` m (built with :func:`beltrs.layout.idlers_along`). In static
-    equilibrium the belt lies on the curve's idlers while its tension T < rho*g*R_c*cos(beta)
-    (about 19 kN here); a start that raises it beyond lifts the belt off them.
+    equilibrium the belt lies on the curve's idlers while its tension T < rho*g*R_c (7.8 kN
+    here, against ~5.1 kN at rest); a start that raises it beyond lifts the belt off them.
 
-    Belt: EA = 10 MN, 20 kg/m, EI = 50 N*m^2, 5 % damping, elements of 30 degrees of arc on
-    the pulleys. Penalty contact 1e8 N/m; the idlers have 1000 N*s/m contact damping and
-    belt friction 0.3 (the rolls turn); the pulleys mu_s 0.35, mu_k 0.3.
+    Belt: EA = 10 MN, 20 kg/m, EI = 50 N*m^2, 5 % damping, elements of 15 degrees of arc on
+    the pulleys (0.26 m, a quarter of the carry pitch: a polygonal belt running over rolls
+    moves up and down by about (load per pitch / T) * l / 4 each time a node passes, 2.5 mm
+    here, so the element must be short against the pitch for lift-off to stand out). Penalty contact 1e8 N/m; the idlers have belt friction 0.3 (the rolls turn)
+    and 3e4 N*s/m contact damping, about half of critical for a 10 kg node on 1e8 N/m
+    (2*sqrt(k*m) = 6.4e4): a running polygonal belt rattles on lightly damped penalty
+    contact at the rolls (see docs/stability.md). The pulleys: mu_s 0.35, mu_k 0.3.
 
     Args:
         flat: level carry length before the curve's vertex, m. Default 30.
@@ -211,9 +215,9 @@ def concave_conveyor(
         incline: incline angle, rad. Default 5 degrees. The straight chord between the
             pulleys (the initial placement) must lie less than a pulley diameter above the
             profile, or the return strand starts above the carry idlers.
-        curve_radius: concave curve radius, m. Default 100.
+        curve_radius: concave curve radius, m. Default 40.
         pulley_radius: both pulleys, m. Default 1.
-        carry_pitch, return_pitch: idler pitches, m. Defaults 1.5 and 4.
+        carry_pitch, return_pitch: idler pitches, m. Defaults 1 and 4.
         counterweight: takeup counterweight, kg. Default 1000.
         drive: head drive (clockwise torque is negative). Default none.
     """
@@ -230,9 +234,15 @@ def concave_conveyor(
                takeup=Takeup(counterweight=counterweight, direction=(-1.0, 0.0)), **common),  # type: ignore[arg-type]
         Pulley(name="head", center=(round(head[0], 9), round(head[1], 9)), mass=800.0, drive=drive, **common),  # type: ignore[arg-type]
     ]
-    rolls = dict(contact_stiffness=1e8, contact_damping=1000.0, friction=Friction(static=0.3, kinetic=0.3))
+    rolls = dict(contact_stiffness=1e8, contact_damping=3e4, friction=Friction(static=0.3, kinetic=0.3))
     clear = 2.0 * r  # keep idlers off the pulleys
     idlers = idlers_along(carry, carry_pitch, start=clear, end=carry.length - clear, **rolls)
     idlers += idlers_along(carry, return_pitch, offset=-2 * r, start=clear, end=carry.length - clear, **rolls)
-    belt = Belt(axial_stiffness=1e7, mass_per_length=20.0, bending_stiffness=50.0, damping_ratio=0.05)
+    belt = Belt(
+        axial_stiffness=1e7,
+        mass_per_length=20.0,
+        bending_stiffness=50.0,
+        damping_ratio=0.05,
+        max_element_angle=math.pi / 12,
+    )
     return Scene(belt=belt, pulleys=pulleys, idlers=idlers)
