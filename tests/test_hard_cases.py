@@ -61,9 +61,10 @@ def test_stiff_contact_rests_without_chatter(stiffness):
     depth = np.max(5.0 - np.linalg.norm(x[:, None, :] - centres[None, :, :], axis=2), axis=1)
     to_next = np.roll(x, -1, axis=0) - x
     to_prev = np.roll(x, 1, axis=0) - x
-    pull = t[:, None] * to_next / np.linalg.norm(to_next, axis=1)[:, None] + np.roll(t, 1)[
-        :, None
-    ] * to_prev / np.linalg.norm(to_prev, axis=1)[:, None]
+    pull = (
+        t[:, None] * to_next / np.linalg.norm(to_next, axis=1)[:, None]
+        + np.roll(t, 1)[:, None] * to_prev / np.linalg.norm(to_prev, axis=1)[:, None]
+    )
     implied = np.linalg.norm(pull, axis=1) / stiffness
     touching = depth > 0
     assert touching.sum() >= 10

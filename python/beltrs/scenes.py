@@ -204,10 +204,11 @@ def concave_conveyor(
     Belt: EA = 10 MN, 20 kg/m, EI = 50 N*m^2, 5 % damping, elements of 15 degrees of arc on
     the pulleys (0.26 m, a quarter of the carry pitch: a polygonal belt running over rolls
     moves up and down by about (load per pitch / T) * l / 4 each time a node passes, 2.5 mm
-    here, so the element must be short against the pitch for lift-off to stand out). Penalty contact 1e8 N/m; the idlers have belt friction 0.3 (the rolls turn)
-    and 3e4 N*s/m contact damping, about half of critical for a 10 kg node on 1e8 N/m
-    (2*sqrt(k*m) = 6.4e4): a running polygonal belt rattles on lightly damped penalty
-    contact at the rolls (see docs/stability.md). The pulleys: mu_s 0.35, mu_k 0.3.
+    here, so the element must be short against the pitch for lift-off to stand out).
+    Penalty contact 1e8 N/m; the idlers have belt friction 0.3 (the rolls turn) and 3e4 N*s/m
+    contact damping, about half of critical for a 5 kg node on 1e8 N/m (2*sqrt(k*m) =
+    4.5e4): on lightly damped penalty contact that rattle builds up (docs/stability.md). The
+    pulleys: mu_s 0.35, mu_k 0.3.
 
     Args:
         flat: level carry length before the curve's vertex, m. Default 30.
