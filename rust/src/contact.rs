@@ -62,7 +62,13 @@ pub struct PulleyBody {
 /// moves with the belt by at most a few nodes a step, so this is O(1) per step; only an
 /// empty window (belt lifted clear, or the run just left) triggers a full scan, in the same
 /// call, so no step is evaluated with a stale empty window.
-pub fn update_window(window: &mut ContactWindow, x: &[V2], body: &PulleyBody) {
+///
+/// A window follows one run of nodes. Belt that reaches the pulley somewhere else (a slack
+/// loop folding back onto it) is caught by a full scan when `full_scan` is set (the stepper
+/// sets it every [`FULL_SCAN_INTERVAL`] steps): the window is widened to take those nodes in.
+/// A node must then cross the `margin` (one element length) within that many steps to go
+/// unseen, i.e. move faster than a quarter of the axial wave speed.
+pub fn update_window(window: &mut ContactWindow, x: &[V2], body: &PulleyBody, full_scan: bool) {
     let n = x.len();
     let reach = body.radius + body.margin;
     let reach2 = reach * reach;
@@ -76,6 +82,28 @@ pub fn update_window(window: &mut ContactWindow, x: &[V2], body: &PulleyBody) {
             window.len = 1;
             track_run(window, n, near);
         }
+    } else if full_scan {
+        for i in 0..n {
+            if near(i) && (i + n - window.first) % n >= window.len {
+                widen(window, i, n);
+            }
+        }
+    }
+}
+
+/// Steps between the full scans that catch a second run of belt reaching a pulley.
+pub const FULL_SCAN_INTERVAL: u64 = 4;
+
+/// Widen a non-empty window the shorter way round to include node `i`.
+fn widen(window: &mut ContactWindow, i: usize, n: usize) {
+    let last = (window.first + window.len - 1) % n;
+    let forward = (i + n - last) % n;
+    let backward = (window.first + n - i) % n;
+    if forward <= backward {
+        window.len = (window.len + forward).min(n);
+    } else {
+        window.first = i;
+        window.len = (window.len + backward).min(n);
     }
 }
 

@@ -383,7 +383,12 @@ impl Simulation {
                             },
                             margin: p.window_margin,
                         };
-                        contact::update_window(&mut s.pulley_window[j], &s.position, &body);
+                        contact::update_window(
+                            &mut s.pulley_window[j],
+                            &s.position,
+                            &body,
+                            s.step % contact::FULL_SCAN_INTERVAL == 0,
+                        );
                         sc.pulley_force[j] = contact::pulley_contact(
                             &s.pulley_window[j],
                             &s.position,

@@ -112,7 +112,7 @@ fn pulley_contact_is_linear_penalty_along_outward_normal() {
         ContactWindow { first: 4, len: 4 },
     ] {
         let mut w = start;
-        update_window(&mut w, &x, &body);
+        update_window(&mut w, &x, &body, false);
         assert_eq!(window_nodes(&w, n), near, "window from {start:?}");
 
         // Pre-load the force array: the kernel must add, not overwrite.
@@ -189,7 +189,7 @@ fn pulley_contact_is_zero_at_and_beyond_the_radius() {
     ];
     let v = vec![V2::zeros(); x.len()];
     let mut w = ContactWindow::default();
-    update_window(&mut w, &x, &body);
+    update_window(&mut w, &x, &body, false);
     assert_eq!(window_nodes(&w, x.len()), vec![0, 1, 2]);
     let mut force = vec![V2::zeros(); x.len()];
     let mut out = PulleyContacts::default();
@@ -226,7 +226,7 @@ fn pulley_contact_damping_acts_on_approach_speed_and_never_pulls() {
         v[i] = body.center_velocity + nrm * outward_speed + tangent(nrm) * 2.5;
     }
     let mut w = ContactWindow::default();
-    update_window(&mut w, &x, &body);
+    update_window(&mut w, &x, &body, false);
     let mut force = vec![V2::zeros(); n];
     let mut out = PulleyContacts::default();
     let on_pulley = pulley_contact(&w, &x, &v, &body, &mut force, &mut out);
@@ -937,7 +937,7 @@ fn emptied_window_rescans_in_the_same_step() {
         x[i] = V2::new(-0.3 + 0.2 * k as f64, -0.99);
     }
     let mut w = ContactWindow::default();
-    update_window(&mut w, &x, &body);
+    update_window(&mut w, &x, &body, false);
     assert_eq!(window_nodes(&w, n), vec![5, 6, 7, 8]);
     // Nodes 5..9 lift clear; nodes 20..23 now dip into the pulley.
     for i in 5..9 {
@@ -946,7 +946,7 @@ fn emptied_window_rescans_in_the_same_step() {
     for (k, i) in (20..23).enumerate() {
         x[i] = V2::new(-0.1 + 0.1 * k as f64, 0.99);
     }
-    update_window(&mut w, &x, &body);
+    update_window(&mut w, &x, &body, false);
     assert_eq!(window_nodes(&w, n), vec![20, 21, 22]);
     let v = vec![V2::zeros(); n];
     let mut force = vec![V2::zeros(); n];
@@ -1027,4 +1027,48 @@ fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
             1.0,
         );
     }
+}
+
+/// Belt reaching a pulley at a second place (a slack loop folding back) is not in the
+/// window of the first run; the periodic full scan widens the window to take it in.
+#[test]
+fn full_scan_catches_a_second_run_of_belt() {
+    let body = PulleyBody {
+        center: V2::zeros(),
+        center_velocity: V2::zeros(),
+        radius: 1.0,
+        stiffness: 1.0e7,
+        damping: 0.0,
+        margin: 0.05,
+    };
+    let n = 40;
+    let mut x: Vec<V2> = (0..n).map(|i| V2::new(10.0 + i as f64, 10.0)).collect();
+    for (k, i) in (5..8).enumerate() {
+        x[i] = V2::new(-0.1 + 0.1 * k as f64, -0.99);
+    }
+    let mut w = ContactWindow::default();
+    update_window(&mut w, &x, &body, false);
+    assert_eq!(window_nodes(&w, n), vec![5, 6, 7]);
+    // Nodes 30 and 31 fold back onto the top of the pulley while 5..8 stay.
+    x[30] = V2::new(-0.05, 0.99);
+    x[31] = V2::new(0.05, 0.99);
+    update_window(&mut w, &x, &body, false);
+    assert_eq!(
+        window_nodes(&w, n),
+        vec![5, 6, 7],
+        "tracking alone misses them"
+    );
+    update_window(&mut w, &x, &body, true);
+    let nodes = window_nodes(&w, n);
+    assert!(
+        nodes.contains(&30) && nodes.contains(&31) && nodes.contains(&5),
+        "{nodes:?}"
+    );
+    let v = vec![V2::zeros(); n];
+    let mut force = vec![V2::zeros(); n];
+    let mut out = PulleyContacts::default();
+    pulley_contact(&w, &x, &v, &body, &mut force, &mut out);
+    let mut touching = out.node.clone();
+    touching.sort();
+    assert_eq!(touching, vec![5, 6, 7, 30, 31]);
 }
