@@ -387,7 +387,7 @@ impl Simulation {
                             &mut s.pulley_window[j],
                             &s.position,
                             &body,
-                            s.step % contact::FULL_SCAN_INTERVAL == 0,
+                            s.step.is_multiple_of(contact::FULL_SCAN_INTERVAL),
                         );
                         sc.pulley_force[j] = contact::pulley_contact(
                             &s.pulley_window[j],
