@@ -50,7 +50,9 @@ class Friction:
         static: static coefficient mu_s, dimensionless, >= kinetic. Default 0 (no friction
             stage is compiled when every body has mu_s = 0).
         kinetic: kinetic coefficient mu_k, dimensionless. Default: equal to ``static``.
-        model: ``"stick_force"`` (default) or ``"none"``.
+        model: ``"stick_force"`` (default) or ``"none"`` (no coefficients allowed). The
+            creep model is not implemented yet: ``"creep"`` is refused with a message
+            saying so.
     """
 
     static: float = 0.0
@@ -182,8 +184,12 @@ class Pulley:
         inertia: polar inertia, kg*m^2. Default None = mass * radius^2 (thesis code).
         wrap: ``"ccw"`` if the belt runs counter-clockwise round it in node order, else
             ``"cw"``. Default "ccw".
-        friction: belt friction. Default None (frictionless).
-        contact_stiffness: penalty stiffness per metre of penetration, N/m. Default 1e9.
+        friction: belt friction. Default None (frictionless). Needs contact_stiffness > 0.
+        contact_stiffness: penalty stiffness per metre of penetration, N/m, >= 0. Default
+            1e9. 0 means no contact with this pulley: the belt passes through it (its
+            drive, brake and takeup then act on the pulley alone, and friction on it is
+            refused, having no normal force to act with); with 0 on every pulley no
+            ``pulley_contact`` stage is compiled.
         contact_damping: normal contact damping, N*s/m. Default 0.
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.

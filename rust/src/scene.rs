@@ -163,39 +163,39 @@ impl Table {
         y0 + (y1 - y0) * (x - x0) / (x1 - x0)
     }
 
-    fn validate(&self, field: &str, non_negative: bool) -> BeltResult<()> {
+    /// Check the table given in a scene under the keys `{field}.{xkey}` and `{field}.{ykey}`
+    /// (e.g. `pulleys[0].drive.time` and `pulleys[0].drive.torque`), so that every message
+    /// names the key the user wrote.
+    fn validate(&self, field: &str, xkey: &str, ykey: &str, non_negative: bool) -> BeltResult<()> {
         if self.x.len() != self.y.len() {
             return Err(BeltError::invalid(
-                field,
-                format!("{} abscissae, {} ordinates", self.x.len(), self.y.len()),
-                "a table needs as many values as abscissae",
+                format!("{field}.{ykey}"),
+                format!("{} values", self.y.len()),
+                format!("needs as many values as {field}.{xkey} ({})", self.x.len()),
             ));
         }
         if self.x.is_empty() {
             return Err(BeltError::invalid(
-                field,
+                format!("{field}.{xkey}"),
                 "[]",
                 "a table needs at least one point",
             ));
         }
         for (i, (&x, &y)) in self.x.iter().zip(&self.y).enumerate() {
-            check_finite(&format!("{field}.x[{i}]"), x)?;
-            check_finite(&format!("{field}.y[{i}]"), y)?;
+            check_finite(&format!("{field}.{xkey}[{i}]"), x)?;
+            check_finite(&format!("{field}.{ykey}[{i}]"), y)?;
             if non_negative && y < 0.0 {
                 return Err(BeltError::invalid(
-                    format!("{field}.y[{i}]"),
+                    format!("{field}.{ykey}[{i}]"),
                     y,
                     "must be ≥ 0",
                 ));
             }
             if i > 0 && x <= self.x[i - 1] {
                 return Err(BeltError::invalid(
-                    format!("{field}.x[{i}]"),
+                    format!("{field}.{xkey}[{i}]"),
                     x,
-                    format!(
-                        "abscissae must increase strictly (previous {})",
-                        self.x[i - 1]
-                    ),
+                    format!("must increase strictly (previous value {})", self.x[i - 1]),
                 ));
             }
         }
@@ -534,11 +534,12 @@ fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
         kinetic_coefficient,
     } = *model
     {
-        check_non_negative(&format!("{field}.static_coefficient"), static_coefficient)?;
-        check_non_negative(&format!("{field}.kinetic_coefficient"), kinetic_coefficient)?;
+        // Named by the scene keys (`friction.static`, `friction.kinetic`).
+        check_non_negative(&format!("{field}.static"), static_coefficient)?;
+        check_non_negative(&format!("{field}.kinetic"), kinetic_coefficient)?;
         if kinetic_coefficient > static_coefficient {
             return Err(BeltError::invalid(
-                format!("{field}.kinetic_coefficient"),
+                format!("{field}.kinetic"),
                 kinetic_coefficient,
                 format!("must not exceed the static coefficient {static_coefficient}"),
             ));
@@ -617,6 +618,20 @@ impl Scene {
             check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
+            if p.contact_stiffness == 0.0 && !p.friction.is_none() {
+                // Friction needs a normal force: it would be silently ignored.
+                let mu = match p.friction {
+                    FrictionModel::StickForce {
+                        static_coefficient, ..
+                    } => static_coefficient,
+                    FrictionModel::None => 0.0,
+                };
+                return Err(BeltError::invalid(
+                    format!("{f}.friction.static"),
+                    mu,
+                    format!("friction needs contact, and {f}.contact_stiffness = 0 switches contact with this pulley off (give contact_stiffness > 0, or no friction)"),
+                ));
+            }
             if let Some(t) = &p.takeup {
                 check_finite(&format!("{f}.takeup.direction[0]"), t.direction[0])?;
                 check_finite(&format!("{f}.takeup.direction[1]"), t.direction[1])?;
@@ -625,7 +640,7 @@ impl Scene {
                     return Err(BeltError::invalid(
                         format!("{f}.takeup.direction"),
                         format!("[{}, {}]", t.direction[0], t.direction[1]),
-                        "must be a unit vector",
+                        format!("must be a unit vector (length 1 within 1e-9; its length is {norm}): it is the line the takeup moves on"),
                     ));
                 }
                 check_non_negative(&format!("{f}.takeup.counterweight"), t.counterweight)?;
@@ -645,16 +660,22 @@ impl Scene {
                 }
             }
             if let Some(d) = &p.drive {
-                d.torque.validate(&format!("{f}.drive.torque"), false)?;
+                d.torque
+                    .validate(&format!("{f}.drive"), "time", "torque", false)?;
                 if !d.speed_factor.x.is_empty() || !d.speed_factor.y.is_empty() {
-                    d.speed_factor
-                        .validate(&format!("{f}.drive.speed_factor"), false)?;
+                    d.speed_factor.validate(
+                        &format!("{f}.drive"),
+                        "speed",
+                        "speed_factor",
+                        false,
+                    )?;
                 }
                 check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
                 check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
             }
             if let Some(br) = &p.brake {
-                br.capacity.validate(&format!("{f}.brake.capacity"), true)?;
+                br.capacity
+                    .validate(&format!("{f}.brake"), "time", "capacity", true)?;
             }
         }
         for (i, d) in self.idlers.iter().enumerate() {
