@@ -11,6 +11,7 @@ import numpy as np
 
 from . import _beltrs
 from ._progress import make_bar
+from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
 
@@ -48,6 +49,12 @@ class Simulation:
         self.last_result: Optional[Result] = None
 
     # --- model facts -------------------------------------------------------------------
+    @property
+    def model(self) -> Model:
+        """The compiled model (stages, time step and its limit, nodes, ...), a read-only
+        snapshot of the one in use; :meth:`set_scene` compiles a new one."""
+        return Model._from_core(self._core, self.scene)
+
     @property
     def dt(self) -> float:
         """Time step in use, s."""
