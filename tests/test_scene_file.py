@@ -409,6 +409,8 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
             documented = _doc_default(default)
             if isinstance(value, tuple):
                 documented = tuple(documented)
-            assert documented == value and type(documented) is type(value) or (
-                isinstance(value, float) and documented == value
+            assert (
+                documented == value
+                and type(documented) is type(value)
+                or (isinstance(value, float) and documented == value)
             ), (where, default, value)
