@@ -277,7 +277,8 @@ class Belt:
         length: unstretched length, m. Default None = length of the initial path.
         elements: number of elements. Default None = fewest with each element at most
             ``max_element_angle`` of arc on the smallest pulley.
-        max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3.
+        max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
+            only when ``elements`` is None.
         tension_only: if True a slack element carries no compression. Default False.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
     """
@@ -318,7 +319,8 @@ class Solver:
     Attributes:
         time_step: fixed step, s. Default None = ``time_step_fraction`` x stability limit;
             a step above the limit is refused.
-        time_step_fraction: in (0, 1]. Default 0.5 (the thesis ran at half its limit).
+        time_step_fraction: in (0, 1]; used only when ``time_step`` is None. Default 0.5
+            (the thesis ran at half its limit).
     """
 
     time_step: Optional[float] = None
@@ -352,7 +354,8 @@ class Recording:
             ``"node_position"``, ``"node_velocity"``. Default: all three.
         stabilise: relax to static equilibrium (:meth:`beltrs.Simulation.stabilise`)
             before the run. Default True.
-        stabilise_friction: keep belt friction on while relaxing. Default False.
+        stabilise_friction: keep belt friction on while relaxing; only with ``stabilise``
+            (alone it would have no effect, and is refused). Default False.
     """
 
     duration: float = 1.0

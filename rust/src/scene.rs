@@ -407,7 +407,8 @@ pub struct RecordingParams {
     pub channels: Vec<String>,
     /// Relax to static equilibrium before the run. Default true.
     pub stabilise: bool,
-    /// Keep belt friction on while relaxing. Default false.
+    /// Keep belt friction on while relaxing; only with `stabilise` (else it would have no
+    /// effect, and is refused). Default false.
     pub stabilise_friction: bool,
 }
 
@@ -426,7 +427,8 @@ impl Default for RecordingParams {
 
 impl RecordingParams {
     /// Check every field: finite non-negative duration, positive interval, `every` ≥ 1, not
-    /// both `interval` and `every`, known and distinct channel names.
+    /// both `interval` and `every`, `stabilise_friction` only with `stabilise`, known and
+    /// distinct channel names.
     pub fn validate(&self) -> BeltResult<()> {
         check_non_negative("recording.duration", self.duration)?;
         if let Some(interval) = self.interval {
@@ -445,6 +447,14 @@ impl RecordingParams {
                     ),
                 ));
             }
+        }
+        if self.stabilise_friction && !self.stabilise {
+            // It would be silently ignored.
+            return Err(BeltError::invalid(
+                "recording.stabilise_friction",
+                true,
+                "has no effect with recording.stabilise = false (set both, or neither)",
+            ));
         }
         for (i, c) in self.channels.iter().enumerate() {
             if !RECORDING_CHANNELS.contains(&c.as_str()) {
