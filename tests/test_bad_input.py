@@ -387,6 +387,16 @@ def test_wrong_type_from_the_builder():
             r'pulleys\[1\]\.friction\.model = "stickforce": unknown friction model, did you mean "stick_force"\?',
         ),
         (("pulleys", 0, "wrap"), "clockwise", r'pulleys\[0\]\.wrap = "clockwise": expected "ccw" or "cw"'),
+        (
+            ("pulleys", 0, "drive", "speed_factor"),
+            None,
+            r"pulleys\[0\]\.drive\.speed_factor = missing: needed with speed",
+        ),
+        (
+            ("pulleys", 1, "name"),
+            "upper",
+            r'pulleys\[1\]\.name = "upper": already the name of pulleys\[0\]: names must be unique',
+        ),
         (("recording", "channels"), ["tension", "strain"], r'recording\.channels\[1\] = "strain": unknown channel'),
         (
             ("recording", "channels"),

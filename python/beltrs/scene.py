@@ -194,7 +194,7 @@ class Pulley:
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
-        name: label for messages. Default "".
+        name: label for messages and results; unique unless empty. Default "".
     """
 
     center: tuple[float, float] = (0.0, 0.0)

@@ -280,7 +280,8 @@ impl Default for TakeupSpec {
 /// A pulley: fixed centre and free rotation, optionally a gravity takeup, a drive and a brake.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PulleySpec {
-    /// Name used in messages and results. Default "" (messages then use the index).
+    /// Name used in messages and results; unique among the pulleys unless empty. Default ""
+    /// (messages then use the index).
     pub name: String,
     /// Centre, m.
     pub center: [f64; 2],
@@ -618,6 +619,15 @@ impl Scene {
         }
         for (i, p) in self.pulleys.iter().enumerate() {
             let f = format!("pulleys[{i}]");
+            if !p.name.is_empty() {
+                if let Some(j) = self.pulleys[..i].iter().position(|q| q.name == p.name) {
+                    return Err(BeltError::invalid(
+                        format!("{f}.name"),
+                        format!("{:?}", p.name),
+                        format!("already the name of pulleys[{j}]: names must be unique (they pick a pulley in results and from Python)"),
+                    ));
+                }
+            }
             check_finite(&format!("{f}.center[0]"), p.center[0])?;
             check_finite(&format!("{f}.center[1]"), p.center[1])?;
             check_positive(&format!("{f}.radius"), p.radius)?;
