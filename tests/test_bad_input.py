@@ -446,3 +446,14 @@ def test_time_step_above_the_limit_from_a_file():
         TimeStepError, match=r"solver\.time_step = [0-9.e-]+ s exceeds the stability limit [0-9.e-]+ s \("
     ):
         beltrs.Simulation(beltrs.Scene.from_toml(text))
+
+
+def test_bad_step_counts_are_scene_errors_not_overflows():
+    sim = beltrs.Simulation(hustrulid_loop())
+    for bad in (-1, 2**64, 1.5, True, "10"):
+        with pytest.raises(SceneError, match=r"steps = .*: must be a whole number in \[0, 2\^63 - 1\]"):
+            sim.step(bad)
+        with pytest.raises(SceneError, match=r"max_steps = .*: must be a whole number"):
+            sim.stabilise(max_steps=bad)
+    sim.step(np.int64(3))  # NumPy integers are whole numbers
+    assert sim.state()["step"] == 3
