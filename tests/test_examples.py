@@ -20,6 +20,14 @@ def test_examples_exist():
     assert {"case_h", "case_h_torque_pulse", "idler_conveyor"} <= names
 
 
+def test_every_example_is_a_scene_file_or_the_script_of_one():
+    """examples/ holds scene files, plus a script only where analysis is needed, next to the
+    scene file it analyses (same name)."""
+    others = [p for p in EXAMPLES.iterdir() if p.is_file() and p.suffix != ".toml" and not p.name.startswith(".")]
+    for p in others:
+        assert p.suffix == ".py" and (EXAMPLES / f"{p.stem}.toml").is_file(), p.name
+
+
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
 def test_every_example_loads_compiles_and_runs(path):
     sim = beltrs.Simulation(beltrs.load_scene(path))

@@ -351,3 +351,66 @@ def test_the_complete_example_in_the_docs():
     for obj in (Belt(), Pulley(), Friction(), Takeup(), Drive(), Brake(), Idler(), Solver(), Recording()):
         keys |= {f.name for f in dataclasses.fields(obj)}
     assert keys <= documented
+
+
+def _doc_default(text: str):
+    """A default as written in docs/scene-format.md, as a Python value (None for "—")."""
+    import ast
+
+    text = text.strip().strip("`").replace("−", "-")
+    if text == "—":
+        return None
+    if "=" in text:  # "π/6 = 0.5235987755982988"
+        text = text.split("=")[-1].strip()
+    text = {"true": "True", "false": "False"}.get(text, text)
+    text = text.replace("-inf", "-1e999").replace("inf", "1e999")
+    return ast.literal_eval(text)
+
+
+def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
+    """docs/scene-format.md has one table per scene table (root, belt, pulleys, friction,
+    takeup, drive, brake, idlers, solver, recording); each lists exactly the keys of that
+    table, each with a unit, the default the code uses, and a rule."""
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "scene-format.md").read_text()
+    keys_section = doc.split("## Keys", 1)[1].split("\n## ", 1)[0]
+    sections: dict[str, dict[str, list[str]]] = {}
+    title = None
+    for line in keys_section.splitlines():
+        if line.startswith("#"):
+            title = line.lstrip("#").strip()
+            sections[title] = {}
+        elif line.startswith("| `") and title is not None:
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            sections[title][cells[0].strip("`")] = cells[1:]
+    tables = {
+        "Root": (Scene, {"gravity"}),
+        "`[belt]`": (Belt, None),
+        "`[[pulleys]]`": (Pulley, None),
+        "`friction`": (Friction, None),
+        "`takeup`": (Takeup, None),
+        "`drive`": (Drive, None),
+        "`brake`": (Brake, None),
+        "`[[idlers]]`": (Idler, None),
+        "`[solver]`": (Solver, None),
+        "`[recording]`": (Recording, None),
+    }
+    assert len(sections) == len(tables), list(sections)
+    for prefix, (cls, only) in tables.items():
+        rows = next(rows for t, rows in sections.items() if t.startswith(prefix))
+        fields = {f.name for f in dataclasses.fields(cls)} if only is None else only
+        assert set(rows) == fields, (prefix, set(rows) ^ fields)
+        for key, (unit, default, rule) in rows.items():
+            where = f"{prefix} {key}"
+            assert unit and default and len(rule) > 3, where
+            value = scene_file.field_default(cls, key)
+            if dataclasses.is_dataclass(value) or value is None and unit == "table":
+                assert default == "—" and unit == "table", where  # a sub-table, absent by default
+                continue
+            documented = _doc_default(default)
+            if isinstance(value, tuple):
+                documented = tuple(documented)
+            assert (
+                documented == value
+                and type(documented) is type(value)
+                or (isinstance(value, float) and documented == value)
+            ), (where, default, value)

@@ -8,6 +8,8 @@ everywhere.
 from . import analysis, analytic, scenes, study
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import __version__
+from .model import Model
+from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .result import Result
 from .scene import Belt, Brake, Drive, Friction, Idler, Pulley, Recording, Scene, Solver, Takeup
 from .scene_file import load_scene
@@ -22,6 +24,7 @@ __all__ = [
     "Drive",
     "Friction",
     "Idler",
+    "Model",
     "Pulley",
     "Recording",
     "Result",

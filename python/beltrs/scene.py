@@ -50,7 +50,9 @@ class Friction:
         static: static coefficient mu_s, dimensionless, >= kinetic. Default 0 (no friction
             stage is compiled when every body has mu_s = 0).
         kinetic: kinetic coefficient mu_k, dimensionless. Default: equal to ``static``.
-        model: ``"stick_force"`` (default) or ``"none"``.
+        model: ``"stick_force"`` (default) or ``"none"`` (no coefficients allowed). The
+            creep model is not implemented yet: ``"creep"`` is refused with a message
+            saying so.
     """
 
     static: float = 0.0
@@ -182,13 +184,17 @@ class Pulley:
         inertia: polar inertia, kg*m^2. Default None = mass * radius^2 (thesis code).
         wrap: ``"ccw"`` if the belt runs counter-clockwise round it in node order, else
             ``"cw"``. Default "ccw".
-        friction: belt friction. Default None (frictionless).
-        contact_stiffness: penalty stiffness per metre of penetration, N/m. Default 1e9.
+        friction: belt friction. Default None (frictionless). Needs contact_stiffness > 0.
+        contact_stiffness: penalty stiffness per metre of penetration, N/m, >= 0. Default
+            1e9. 0 means no contact with this pulley: the belt passes through it (its
+            drive, brake and takeup then act on the pulley alone, and friction on it is
+            refused, having no normal force to act with); with 0 on every pulley no
+            ``pulley_contact`` stage is compiled.
         contact_damping: normal contact damping, N*s/m. Default 0.
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
-        name: label for messages. Default "".
+        name: label for messages and results; unique unless empty. Default "".
     """
 
     center: tuple[float, float] = (0.0, 0.0)
@@ -271,7 +277,8 @@ class Belt:
         length: unstretched length, m. Default None = length of the initial path.
         elements: number of elements. Default None = fewest with each element at most
             ``max_element_angle`` of arc on the smallest pulley.
-        max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3.
+        max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
+            only when ``elements`` is None.
         tension_only: if True a slack element carries no compression. Default False.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
     """
@@ -312,7 +319,8 @@ class Solver:
     Attributes:
         time_step: fixed step, s. Default None = ``time_step_fraction`` x stability limit;
             a step above the limit is refused.
-        time_step_fraction: in (0, 1]. Default 0.5 (the thesis ran at half its limit).
+        time_step_fraction: in (0, 1]; used only when ``time_step`` is None. Default 0.5
+            (the thesis ran at half its limit).
     """
 
     time_step: Optional[float] = None
@@ -346,7 +354,8 @@ class Recording:
             ``"node_position"``, ``"node_velocity"``. Default: all three.
         stabilise: relax to static equilibrium (:meth:`beltrs.Simulation.stabilise`)
             before the run. Default True.
-        stabilise_friction: keep belt friction on while relaxing. Default False.
+        stabilise_friction: keep belt friction on while relaxing; only with ``stabilise``
+            (alone it would have no effect, and is refused). Default False.
     """
 
     duration: float = 1.0

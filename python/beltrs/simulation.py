@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numbers
 import os
 import time as _time
 from dataclasses import replace
@@ -11,6 +12,7 @@ import numpy as np
 
 from . import _beltrs
 from ._progress import make_bar
+from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
 
@@ -20,6 +22,13 @@ __all__ = ["DEFAULT_MAX_MEMORY", "Simulation"]
 DEFAULT_MAX_MEMORY = 256 * 2**20
 _MAX_STEPS = 2**63 - 1
 _CHUNK_SECONDS = 0.1
+
+
+def _whole(name: str, value: Any) -> int:
+    """``value`` as an int in [0, 2^63 - 1], else a SceneError naming the argument."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 0 <= value <= _MAX_STEPS:
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be a whole number in [0, 2^63 - 1]")
+    return int(value)
 
 
 def _next_chunk(chunk: int, seconds: float) -> int:
@@ -48,6 +57,12 @@ class Simulation:
         self.last_result: Optional[Result] = None
 
     # --- model facts -------------------------------------------------------------------
+    @property
+    def model(self) -> Model:
+        """The compiled model (stages, time step and its limit, nodes, ...), a read-only
+        snapshot of the one in use; :meth:`set_scene` compiles a new one."""
+        return Model._from_core(self._core, self.scene)
+
     @property
     def dt(self) -> float:
         """Time step in use, s."""
@@ -146,6 +161,7 @@ class Simulation:
         Raises:
             beltrs.BeltrsError: if the relaxation does not converge.
         """
+        max_steps = _whole("max_steps", max_steps)
         report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
         if not report["converged"]:
             raise _beltrs.BeltrsError(
@@ -324,8 +340,8 @@ class Simulation:
         return sim
 
     def step(self, steps: int = 1) -> None:
-        """Advance ``steps`` steps without recording."""
-        self._core.step(int(steps))
+        """Advance ``steps`` steps (a whole number ≥ 0) without recording."""
+        self._core.step(_whole("steps", steps))
 
     # --- change a parameter and continue ----------------------------------------------
     def set_scene(self, scene: Scene) -> None:

@@ -147,6 +147,46 @@ impl BeltPath {
         })
     }
 
+    /// Check that no free span of the path passes through a pulley other than the two it
+    /// joins (`pulleys` in belt order, as given to [`BeltPath::from_pulleys`]). Such a path
+    /// does not go round the pulleys as listed: the belt would start inside a pulley.
+    /// Pulleys with zero contact stiffness are skipped (the belt passes through them by
+    /// definition). A span that only touches a pulley (within 1e-9 of its radius) is fine.
+    pub fn check_spans_clear(&self, pulleys: &[PulleySpec]) -> BeltResult<()> {
+        let n = pulleys.len();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let Segment::Line { a, b } = self.segments[2 * i + 1] else {
+                continue;
+            };
+            for (k, p) in pulleys.iter().enumerate() {
+                if k == i || k == j || p.contact_stiffness == 0.0 {
+                    continue;
+                }
+                let c = Vector2::new(p.center[0], p.center[1]);
+                let ab = b - a;
+                let len2 = ab.norm_squared();
+                let t = if len2 > 0.0 {
+                    ((c - a).dot(&ab) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let dist = (a + ab * t - c).norm();
+                if dist < p.radius * (1.0 - 1e-9) {
+                    return Err(BeltError::invalid(
+                        format!("pulleys[{k}].center"),
+                        format!("[{}, {}]", p.center[0], p.center[1]),
+                        format!(
+                            "the belt span from pulleys[{i}] to pulleys[{j}] passes through this pulley ({dist:.6} m from its centre, radius {} m): the belt path does not close round the pulleys in the order and wraps given",
+                            p.radius
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Point at arc length `s` (taken modulo the path length), m.
     pub fn point(&self, s: f64) -> Vector2<f64> {
         let s = s.rem_euclid(self.length);
@@ -264,6 +304,44 @@ mod tests {
         // Crossed belt: wraps exceed 180°, both equal by symmetry.
         assert!(path.wrap_angles[0] > std::f64::consts::PI);
         assert!((path.wrap_angles[0] - path.wrap_angles[1]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_span_through_another_pulley_is_refused() {
+        // Three pulleys on the x axis, listed left, right, middle: the span from the left
+        // to the right pulley runs along y = −1 and cuts through the middle one (radius 2).
+        let mut p = vec![
+            PulleySpec {
+                center: [0.0, 0.0],
+                radius: 1.0,
+                ..Default::default()
+            },
+            PulleySpec {
+                center: [20.0, 0.0],
+                radius: 1.0,
+                ..Default::default()
+            },
+            PulleySpec {
+                center: [10.0, 0.0],
+                radius: 2.0,
+                ..Default::default()
+            },
+        ];
+        let path = BeltPath::from_pulleys(&p).unwrap();
+        let err = path.check_spans_clear(&p).unwrap_err().to_string();
+        assert!(
+            err.starts_with("pulleys[2].center = [10, 0]: the belt span from pulleys[0] to pulleys[1] passes through this pulley (1.000000 m from its centre, radius 2 m)"),
+            "{err}"
+        );
+        // Equal radii: the span only touches the middle pulley, which is a valid path.
+        p[2].radius = 1.0;
+        let path = BeltPath::from_pulleys(&p).unwrap();
+        path.check_spans_clear(&p).unwrap();
+        // A pulley with contact switched off may lie across the belt.
+        p[2].radius = 2.0;
+        p[2].contact_stiffness = 0.0;
+        let path = BeltPath::from_pulleys(&p).unwrap();
+        path.check_spans_clear(&p).unwrap();
     }
 
     #[test]

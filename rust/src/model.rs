@@ -169,6 +169,7 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         let path = BeltPath::from_pulleys(&scene.pulleys)?;
+        path.check_spans_clear(&scene.pulleys)?;
         if !(path.length.is_finite() && path.length > 0.0) {
             return Err(BeltError::invalid(
                 "pulleys",

@@ -163,39 +163,39 @@ impl Table {
         y0 + (y1 - y0) * (x - x0) / (x1 - x0)
     }
 
-    fn validate(&self, field: &str, non_negative: bool) -> BeltResult<()> {
+    /// Check the table given in a scene under the keys `{field}.{xkey}` and `{field}.{ykey}`
+    /// (e.g. `pulleys[0].drive.time` and `pulleys[0].drive.torque`), so that every message
+    /// names the key the user wrote.
+    fn validate(&self, field: &str, xkey: &str, ykey: &str, non_negative: bool) -> BeltResult<()> {
         if self.x.len() != self.y.len() {
             return Err(BeltError::invalid(
-                field,
-                format!("{} abscissae, {} ordinates", self.x.len(), self.y.len()),
-                "a table needs as many values as abscissae",
+                format!("{field}.{ykey}"),
+                format!("{} values", self.y.len()),
+                format!("needs as many values as {field}.{xkey} ({})", self.x.len()),
             ));
         }
         if self.x.is_empty() {
             return Err(BeltError::invalid(
-                field,
+                format!("{field}.{xkey}"),
                 "[]",
                 "a table needs at least one point",
             ));
         }
         for (i, (&x, &y)) in self.x.iter().zip(&self.y).enumerate() {
-            check_finite(&format!("{field}.x[{i}]"), x)?;
-            check_finite(&format!("{field}.y[{i}]"), y)?;
+            check_finite(&format!("{field}.{xkey}[{i}]"), x)?;
+            check_finite(&format!("{field}.{ykey}[{i}]"), y)?;
             if non_negative && y < 0.0 {
                 return Err(BeltError::invalid(
-                    format!("{field}.y[{i}]"),
+                    format!("{field}.{ykey}[{i}]"),
                     y,
                     "must be ≥ 0",
                 ));
             }
             if i > 0 && x <= self.x[i - 1] {
                 return Err(BeltError::invalid(
-                    format!("{field}.x[{i}]"),
+                    format!("{field}.{xkey}[{i}]"),
                     x,
-                    format!(
-                        "abscissae must increase strictly (previous {})",
-                        self.x[i - 1]
-                    ),
+                    format!("must increase strictly (previous value {})", self.x[i - 1]),
                 ));
             }
         }
@@ -280,7 +280,8 @@ impl Default for TakeupSpec {
 /// A pulley: fixed centre and free rotation, optionally a gravity takeup, a drive and a brake.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PulleySpec {
-    /// Name used in messages and results. Default "" (messages then use the index).
+    /// Name used in messages and results; unique among the pulleys unless empty. Default ""
+    /// (messages then use the index).
     pub name: String,
     /// Centre, m.
     pub center: [f64; 2],
@@ -407,7 +408,8 @@ pub struct RecordingParams {
     pub channels: Vec<String>,
     /// Relax to static equilibrium before the run. Default true.
     pub stabilise: bool,
-    /// Keep belt friction on while relaxing. Default false.
+    /// Keep belt friction on while relaxing; only with `stabilise` (else it would have no
+    /// effect, and is refused). Default false.
     pub stabilise_friction: bool,
 }
 
@@ -426,7 +428,8 @@ impl Default for RecordingParams {
 
 impl RecordingParams {
     /// Check every field: finite non-negative duration, positive interval, `every` ≥ 1, not
-    /// both `interval` and `every`, known and distinct channel names.
+    /// both `interval` and `every`, `stabilise_friction` only with `stabilise`, known and
+    /// distinct channel names.
     pub fn validate(&self) -> BeltResult<()> {
         check_non_negative("recording.duration", self.duration)?;
         if let Some(interval) = self.interval {
@@ -445,6 +448,14 @@ impl RecordingParams {
                     ),
                 ));
             }
+        }
+        if self.stabilise_friction && !self.stabilise {
+            // It would be silently ignored.
+            return Err(BeltError::invalid(
+                "recording.stabilise_friction",
+                true,
+                "has no effect with recording.stabilise = false (set both, or neither)",
+            ));
         }
         for (i, c) in self.channels.iter().enumerate() {
             if !RECORDING_CHANNELS.contains(&c.as_str()) {
@@ -534,11 +545,12 @@ fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
         kinetic_coefficient,
     } = *model
     {
-        check_non_negative(&format!("{field}.static_coefficient"), static_coefficient)?;
-        check_non_negative(&format!("{field}.kinetic_coefficient"), kinetic_coefficient)?;
+        // Named by the scene keys (`friction.static`, `friction.kinetic`).
+        check_non_negative(&format!("{field}.static"), static_coefficient)?;
+        check_non_negative(&format!("{field}.kinetic"), kinetic_coefficient)?;
         if kinetic_coefficient > static_coefficient {
             return Err(BeltError::invalid(
-                format!("{field}.kinetic_coefficient"),
+                format!("{field}.kinetic"),
                 kinetic_coefficient,
                 format!("must not exceed the static coefficient {static_coefficient}"),
             ));
@@ -607,6 +619,15 @@ impl Scene {
         }
         for (i, p) in self.pulleys.iter().enumerate() {
             let f = format!("pulleys[{i}]");
+            if !p.name.is_empty() {
+                if let Some(j) = self.pulleys[..i].iter().position(|q| q.name == p.name) {
+                    return Err(BeltError::invalid(
+                        format!("{f}.name"),
+                        format!("{:?}", p.name),
+                        format!("already the name of pulleys[{j}]: names must be unique (they pick a pulley in results and from Python)"),
+                    ));
+                }
+            }
             check_finite(&format!("{f}.center[0]"), p.center[0])?;
             check_finite(&format!("{f}.center[1]"), p.center[1])?;
             check_positive(&format!("{f}.radius"), p.radius)?;
@@ -617,6 +638,20 @@ impl Scene {
             check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
+            if p.contact_stiffness == 0.0 && !p.friction.is_none() {
+                // Friction needs a normal force: it would be silently ignored.
+                let mu = match p.friction {
+                    FrictionModel::StickForce {
+                        static_coefficient, ..
+                    } => static_coefficient,
+                    FrictionModel::None => 0.0,
+                };
+                return Err(BeltError::invalid(
+                    format!("{f}.friction.static"),
+                    mu,
+                    format!("friction needs contact, and {f}.contact_stiffness = 0 switches contact with this pulley off (give contact_stiffness > 0, or no friction)"),
+                ));
+            }
             if let Some(t) = &p.takeup {
                 check_finite(&format!("{f}.takeup.direction[0]"), t.direction[0])?;
                 check_finite(&format!("{f}.takeup.direction[1]"), t.direction[1])?;
@@ -625,7 +660,7 @@ impl Scene {
                     return Err(BeltError::invalid(
                         format!("{f}.takeup.direction"),
                         format!("[{}, {}]", t.direction[0], t.direction[1]),
-                        "must be a unit vector",
+                        format!("must be a unit vector (length 1 within 1e-9; its length is {norm}): it is the line the takeup moves on"),
                     ));
                 }
                 check_non_negative(&format!("{f}.takeup.counterweight"), t.counterweight)?;
@@ -645,16 +680,22 @@ impl Scene {
                 }
             }
             if let Some(d) = &p.drive {
-                d.torque.validate(&format!("{f}.drive.torque"), false)?;
+                d.torque
+                    .validate(&format!("{f}.drive"), "time", "torque", false)?;
                 if !d.speed_factor.x.is_empty() || !d.speed_factor.y.is_empty() {
-                    d.speed_factor
-                        .validate(&format!("{f}.drive.speed_factor"), false)?;
+                    d.speed_factor.validate(
+                        &format!("{f}.drive"),
+                        "speed",
+                        "speed_factor",
+                        false,
+                    )?;
                 }
                 check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
                 check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
             }
             if let Some(br) = &p.brake {
-                br.capacity.validate(&format!("{f}.brake.capacity"), true)?;
+                br.capacity
+                    .validate(&format!("{f}.brake"), "time", "capacity", true)?;
             }
         }
         for (i, d) in self.idlers.iter().enumerate() {

@@ -61,6 +61,14 @@ fn each_rule_names_its_field() {
         ),
         (
             RecordingParams {
+                stabilise: false,
+                stabilise_friction: true,
+                ..base.clone()
+            },
+            "recording.stabilise_friction: has no effect with recording.stabilise = false (set both, or neither)",
+        ),
+        (
+            RecordingParams {
                 channels: vec!["tension".into(), "tension".into()],
                 ..base.clone()
             },

@@ -239,12 +239,23 @@ fn friction(r: &mut Reader<'_>) -> BeltResult<FrictionModel> {
             static_coefficient: mu_s,
             kinetic_coefficient: mu_k.unwrap_or(mu_s),
         },
+        "creep" => {
+            return Err(BeltError::invalid(
+                f.field("model"),
+                "\"creep\"",
+                "the creep friction model is not implemented yet (available: \"none\", \"stick_force\")",
+            ))
+        }
         other => {
+            let hint = match crate::suggest::close_match(other, ["none", "stick_force"]) {
+                Some(s) => format!(", did you mean \"{s}\"?"),
+                None => String::new(),
+            };
             return Err(BeltError::invalid(
                 f.field("model"),
                 format!("{other:?}"),
-                "unknown friction model (known: \"none\", \"stick_force\")",
-            ))
+                format!("unknown friction model{hint} (known: \"none\", \"stick_force\")"),
+            ));
         }
     };
     f.finish()?;
