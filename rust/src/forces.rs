@@ -20,42 +20,97 @@ fn next(i: usize, n: usize) -> usize {
     }
 }
 
-/// Add node weights −m·g ŷ (thesis eq. 4.49).
-pub fn gravity(mass: &[f64], g: f64, force: &mut [V2]) {
-    for (f, &m) in force.iter_mut().zip(mass) {
-        f.y -= m * g;
+/// One axial element: tension k(l − l⁰), clipped at zero for a slack `tension_only` belt,
+/// and the force d·T/l it puts on its first node (minus that on its second).
+#[inline(always)]
+fn elastic_element(d: V2, k: f64, l0: f64, tension_only: bool) -> (f64, V2) {
+    let l = (d.x * d.x + d.y * d.y).sqrt();
+    let t = k * (l - l0);
+    // A select, not `max`: a NaN tension must stay NaN for the divergence check.
+    let t = if tension_only && t < 0.0 { 0.0 } else { t };
+    (t, d * (t / l))
+}
+
+/// Node forces from the element forces: node i gets fe_i − fe_{i−1} and its weight
+/// −m_i·g ŷ (thesis eq. 4.49). Written, not added: this is the first stage that touches
+/// `force`, so no separate reset or gravity pass is needed. The sums are taken in the order
+/// of the former separate passes (reset, gravity, elements in order), so the forces are
+/// the same to the last bit.
+#[inline(always)]
+fn gather(element_force: &[V2], mass: &[f64], gravity: f64, force: &mut [V2]) {
+    let n = force.len();
+    let fe_last = element_force[n - 1];
+    force[0] = V2::new(
+        (0.0 + element_force[0].x) - fe_last.x,
+        ((0.0 - mass[0] * gravity) + element_force[0].y) - fe_last.y,
+    );
+    for ((f, (prev, cur)), &m) in force[1..]
+        .iter_mut()
+        .zip(element_force.iter().zip(&element_force[1..]))
+        .zip(&mass[1..])
+    {
+        *f = V2::new(
+            (0.0 - prev.x) + cur.x,
+            ((0.0 - m * gravity) - prev.y) + cur.y,
+        );
     }
 }
 
-/// Elastic axial springs, thesis eq. 4.40: the force k(l − l⁰) acts along each element.
-/// Writes the element force (tension positive, N) to `tension`.
+/// Elastic axial springs, thesis eq. 4.40, and gravity, eq. 4.49: the force k(l − l⁰) acts
+/// along each element, the weight m·g on each node (`gravity` = 0 without a gravity stage).
+/// **Writes** (does not add to) `force`; writes the element tension (positive in tension,
+/// N) to `tension` and the force of each element on its first node to `element_force`.
+///
+/// Two passes: the elements (one square root and one division each, no dependence
+/// between elements, so the compiler can vectorise them), then the nodes. See
+/// `docs/performance.md`.
+#[allow(clippy::too_many_arguments)]
 pub fn axial(
     x: &[V2],
     k: &[f64],
     l0: &[f64],
     tension_only: bool,
-    force: &mut [V2],
+    mass: &[f64],
+    gravity: f64,
+    element_force: &mut [V2],
     tension: &mut [f64],
+    force: &mut [V2],
 ) {
     let n = x.len();
-    for e in 0..n {
-        let j = next(e, n);
-        let d = x[j] - x[e];
-        let l = d.norm();
-        let mut t = k[e] * (l - l0[e]);
-        if tension_only && t < 0.0 {
-            t = 0.0;
-        }
-        tension[e] = t;
-        let f = d * (t / l);
-        force[e] += f;
-        force[j] -= f;
+    for ((((fe, te), (a, b)), &k), &l0) in element_force[..n - 1]
+        .iter_mut()
+        .zip(tension.iter_mut())
+        .zip(x.iter().zip(&x[1..]))
+        .zip(k)
+        .zip(l0)
+    {
+        (*te, *fe) = elastic_element(b - a, k, l0, tension_only);
     }
+    (tension[n - 1], element_force[n - 1]) =
+        elastic_element(x[0] - x[n - 1], k[n - 1], l0[n - 1], tension_only);
+    gather(element_force, mass, gravity, force);
 }
 
-/// Kelvin-Voigt axial elements, thesis eq. 4.40 + 4.56: T = k(l − l⁰) + c·dl/dt.
-/// With `tension_only`, a slack element (l < l⁰) carries nothing and the total is clipped
-/// at zero (a dashpot cannot push a slack belt).
+/// One Kelvin-Voigt element: T = k(l − l⁰) + c·dl/dt with dl/dt = d·(v₂ − v₁)/l; a slack
+/// `tension_only` element (l < l⁰) and a negative total carry nothing.
+#[inline(always)]
+fn damped_element(d: V2, dv: V2, k: f64, c: f64, l0: f64, tension_only: bool) -> (f64, V2) {
+    let l = (d.x * d.x + d.y * d.y).sqrt();
+    let rate = (d.x * dv.x + d.y * dv.y) / l;
+    let stretch = l - l0;
+    let t = k * stretch + c * rate;
+    let t = if tension_only && (stretch < 0.0 || t < 0.0) {
+        0.0
+    } else {
+        t
+    };
+    (t, d * (t / l))
+}
+
+/// Kelvin-Voigt axial elements, thesis eq. 4.40 + 4.56: T = k(l − l⁰) + c·dl/dt, and
+/// gravity, as [`axial`] (which see: `force` is written, not added to). With
+/// `tension_only`, a slack element (l < l⁰) carries nothing and the total is clipped at
+/// zero (a dashpot cannot push a slack belt).
 #[allow(clippy::too_many_arguments)]
 pub fn axial_damped(
     x: &[V2],
@@ -64,25 +119,32 @@ pub fn axial_damped(
     c: &[f64],
     l0: &[f64],
     tension_only: bool,
-    force: &mut [V2],
+    mass: &[f64],
+    gravity: f64,
+    element_force: &mut [V2],
     tension: &mut [f64],
+    force: &mut [V2],
 ) {
     let n = x.len();
-    for e in 0..n {
-        let j = next(e, n);
-        let d = x[j] - x[e];
-        let l = d.norm();
-        let rate = d.dot(&(v[j] - v[e])) / l;
-        let stretch = l - l0[e];
-        let mut t = k[e] * stretch + c[e] * rate;
-        if tension_only && (stretch < 0.0 || t < 0.0) {
-            t = 0.0;
-        }
-        tension[e] = t;
-        let f = d * (t / l);
-        force[e] += f;
-        force[j] -= f;
+    for (((((fe, te), (xa, xb)), (va, vb)), (&k, &c)), &l0) in element_force[..n - 1]
+        .iter_mut()
+        .zip(tension.iter_mut())
+        .zip(x.iter().zip(&x[1..]))
+        .zip(v.iter().zip(&v[1..]))
+        .zip(k.iter().zip(c))
+        .zip(l0)
+    {
+        (*te, *fe) = damped_element(xb - xa, vb - va, k, c, l0, tension_only);
     }
+    (tension[n - 1], element_force[n - 1]) = damped_element(
+        x[0] - x[n - 1],
+        v[0] - v[n - 1],
+        k[n - 1],
+        c[n - 1],
+        l0[n - 1],
+        tension_only,
+    );
+    gather(element_force, mass, gravity, force);
 }
 
 /// Rotational bending springs, potential ½·k_θ·θ² per node (thesis eq. 4.11, 4.31).

@@ -47,6 +47,8 @@ impl Effects {
 pub struct Scratch {
     /// Net force on each node, N.
     pub force: Vec<V2>,
+    /// Force of each axial element on its first node, N (the axial stage's intermediate).
+    pub element_force: Vec<V2>,
     /// Element tension, N.
     pub tension: Vec<f64>,
     /// Contacts of each pulley.
@@ -74,6 +76,7 @@ impl Scratch {
         let (n, p, q) = (model.nodes, model.pulleys.len(), model.idlers.len());
         Scratch {
             force: vec![V2::zeros(); n],
+            element_force: vec![V2::zeros(); n],
             tension: vec![0.0; n],
             contacts: vec![PulleyContacts::default(); p],
             stick: vec![StickScratch::default(); p],
@@ -326,7 +329,14 @@ impl Simulation {
         } else {
             dt
         };
-        sc.force.iter_mut().for_each(|f| *f = V2::zeros());
+        // Every model has an axial stage, which writes all node forces (with the weights
+        // when the model has a gravity stage), so the force array needs no reset here.
+        debug_assert!(m.has_stage(Stage::Axial) || m.has_stage(Stage::AxialDamped));
+        let gravity = if m.has_stage(Stage::Gravity) {
+            m.gravity
+        } else {
+            0.0
+        };
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_holds.iter_mut().for_each(|h| *h = false);
@@ -337,22 +347,30 @@ impl Simulation {
         for (k, &stage) in m.stages.iter().enumerate() {
             let started = self.profile.as_ref().map(|_| Instant::now());
             match stage {
-                Stage::Gravity => forces::gravity(&m.mass, m.gravity, &mut sc.force),
+                // The axial pass writes every node force (no reset pass) and adds the
+                // weights (no gravity pass): see forces::axial and docs/performance.md.
+                Stage::Gravity => {}
                 Stage::Axial => forces::axial(
                     &s.position,
                     &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
+                    &mut sc.element_force,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::AxialDamped if !effects.damping => forces::axial(
                     &s.position,
                     &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
+                    &mut sc.element_force,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::AxialDamped => forces::axial_damped(
                     &s.position,
@@ -361,8 +379,11 @@ impl Simulation {
                     &m.axial_damping,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
+                    &mut sc.element_force,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
                 Stage::PulleyContact => {
@@ -533,7 +554,11 @@ impl Simulation {
         let sc = &self.scratch;
         let dt = m.dt;
         let inv_mass = &self.inertia.inv_mass;
-        let mut check = 0.0;
+        // The finiteness check is folded into the node loop. Each node is tested on its
+        // own (a flag, not one running sum): a running floating-point sum is a chain of
+        // dependent additions through every node that the compiler may not reorder, and it
+        // was the slowest part of this loop.
+        let mut nodes_finite = true;
         for ((x, v), (f, im)) in s
             .position
             .iter_mut()
@@ -542,8 +567,9 @@ impl Simulation {
         {
             *v += f * (dt * im);
             *x += *v * dt;
-            check += x.x + x.y + v.x + v.y;
+            nodes_finite &= (x.x + x.y + v.x + v.y).is_finite();
         }
+        let mut check = 0.0;
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
             let old = s.pulley_omega[j];
@@ -578,7 +604,7 @@ impl Simulation {
         s.time += dt;
         s.step += 1;
         check += s.drive_work;
-        if !check.is_finite() {
+        if !(nodes_finite && check.is_finite()) {
             return Err(self.locate_non_finite());
         }
         Ok(())

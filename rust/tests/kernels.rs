@@ -48,7 +48,18 @@ fn axial_force_is_minus_gradient_of_strain_energy() {
     let l0: Vec<f64> = (0..n).map(|e| 1.2 + 0.05 * e as f64).collect();
     let mut f = vec![V2::zeros(); n];
     let mut t = vec![0.0; n];
-    forces::axial(&x, &k, &l0, false, &mut f, &mut t);
+    let mut fe = vec![V2::zeros(); n];
+    forces::axial(
+        &x,
+        &k,
+        &l0,
+        false,
+        &vec![0.0; n],
+        0.0,
+        &mut fe,
+        &mut t,
+        &mut f,
+    );
     let energy = |y: &[V2]| axial_energy(y, &k, &l0);
     for i in 0..n {
         for c in 0..2 {
