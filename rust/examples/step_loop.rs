@@ -160,6 +160,26 @@ fn main() {
                 .wrapping_mul(0x100_0000_01b3)
         });
     let node_steps = nodes as f64 * steps as f64;
+    if std::env::var_os("STEP_LOOP_PROFILE").is_some() {
+        sim.set_profiling(true);
+        let t0 = Instant::now();
+        sim.step(steps).expect("steps");
+        let wall = t0.elapsed().as_secs_f64();
+        let profile = sim.profile.clone().unwrap_or_default();
+        for (stage, t) in sim.model.stages.iter().zip(&profile) {
+            println!(
+                "  {:>16}: {:.2} ns per node-step",
+                stage.name(),
+                t / node_steps * 1e9
+            );
+        }
+        let staged: f64 = profile.iter().sum();
+        println!(
+            "  {:>16}: {:.2} ns per node-step",
+            "outside stages",
+            (wall - staged) / node_steps * 1e9
+        );
+    }
     println!(
         "{which} {nodes} nodes, {steps} steps x 5, stages {:?}: {:.2} ns per node-step best, {:.2} median ({:.3e} node-steps/s best); state fingerprint {fingerprint:016x}",
         sim.model.stages.iter().map(|s| s.name()).collect::<Vec<_>>(),

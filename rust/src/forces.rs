@@ -31,38 +31,36 @@ fn elastic_element(d: V2, k: f64, l0: f64, tension_only: bool) -> (f64, V2) {
     (t, d * (t / l))
 }
 
-/// Node forces from the element forces: node i gets fe_i − fe_{i−1} and its weight
-/// −m_i·g ŷ (thesis eq. 4.49). Written, not added: this is the first stage that touches
-/// `force`, so no separate reset or gravity pass is needed. The sums are taken in the order
-/// of the former separate passes (reset, gravity, elements in order), so the forces are
-/// the same to the last bit.
+/// Force on a node from the element before it (`prev`, that element's force on its first
+/// node), the element after it (`cur`) and its weight −m·g ŷ (thesis eq. 4.49), summed in
+/// the order of the former separate passes (reset, gravity, elements in order), so that
+/// the forces are the same to the last bit.
 #[inline(always)]
-fn gather(element_force: &[V2], mass: &[f64], gravity: f64, force: &mut [V2]) {
-    let n = force.len();
-    let fe_last = element_force[n - 1];
-    force[0] = V2::new(
-        (0.0 + element_force[0].x) - fe_last.x,
-        ((0.0 - mass[0] * gravity) + element_force[0].y) - fe_last.y,
-    );
-    for ((f, (prev, cur)), &m) in force[1..]
-        .iter_mut()
-        .zip(element_force.iter().zip(&element_force[1..]))
-        .zip(&mass[1..])
-    {
-        *f = V2::new(
-            (0.0 - prev.x) + cur.x,
-            ((0.0 - m * gravity) - prev.y) + cur.y,
-        );
-    }
+fn node_force(prev: V2, cur: V2, m: f64, gravity: f64) -> V2 {
+    V2::new(
+        (0.0 - prev.x) + cur.x,
+        ((0.0 - m * gravity) - prev.y) + cur.y,
+    )
+}
+
+/// Node 0: its sum started with element 0 (before the closing element n−1).
+#[inline(always)]
+fn first_node_force(first: V2, closing: V2, m: f64, gravity: f64) -> V2 {
+    V2::new(
+        (0.0 + first.x) - closing.x,
+        ((0.0 - m * gravity) + first.y) - closing.y,
+    )
 }
 
 /// Elastic axial springs, thesis eq. 4.40, and gravity, eq. 4.49: the force k(l − l⁰) acts
 /// along each element, the weight m·g on each node (`gravity` = 0 without a gravity stage).
-/// **Writes** (does not add to) `force`; writes the element tension (positive in tension,
-/// N) to `tension` and the force of each element on its first node to `element_force`.
+/// **Writes** (does not add to) `force`: this is the first stage that touches it, so no
+/// reset or gravity pass is needed. Writes the element tension (positive in tension, N) to
+/// `tension`.
 ///
-/// Two passes: the elements (one square root and one division each, no dependence
-/// between elements, so the compiler can vectorise them), then the nodes. See
+/// One pass: element e (one square root and one division) and then node e, which needs the
+/// force of element e−1, carried from the previous iteration. The compiler vectorises this
+/// loop (two elements per SSE2 register) despite the carried value. See
 /// `docs/performance.md`.
 #[allow(clippy::too_many_arguments)]
 pub fn axial(
@@ -72,23 +70,31 @@ pub fn axial(
     tension_only: bool,
     mass: &[f64],
     gravity: f64,
-    element_force: &mut [V2],
     tension: &mut [f64],
     force: &mut [V2],
 ) {
     let n = x.len();
-    for ((((fe, te), (a, b)), &k), &l0) in element_force[..n - 1]
+    let (t_last, fe_last) = elastic_element(x[0] - x[n - 1], k[n - 1], l0[n - 1], tension_only);
+    let (t_first, fe_first) = elastic_element(x[1] - x[0], k[0], l0[0], tension_only);
+    (tension[0], tension[n - 1]) = (t_first, t_last);
+    let mut prev = fe_first;
+    // Elements 1..n−2 and nodes 1..n−2.
+    let inner = 1..n - 1;
+    for (((((f, te), (a, b)), &k), &l0), &m) in force[inner.clone()]
         .iter_mut()
-        .zip(tension.iter_mut())
-        .zip(x.iter().zip(&x[1..]))
-        .zip(k)
-        .zip(l0)
+        .zip(&mut tension[inner.clone()])
+        .zip(x[1..].iter().zip(&x[2..]))
+        .zip(&k[inner.clone()])
+        .zip(&l0[inner.clone()])
+        .zip(&mass[inner])
     {
-        (*te, *fe) = elastic_element(b - a, k, l0, tension_only);
+        let (t, fe) = elastic_element(b - a, k, l0, tension_only);
+        *te = t;
+        *f = node_force(prev, fe, m, gravity);
+        prev = fe;
     }
-    (tension[n - 1], element_force[n - 1]) =
-        elastic_element(x[0] - x[n - 1], k[n - 1], l0[n - 1], tension_only);
-    gather(element_force, mass, gravity, force);
+    force[n - 1] = node_force(prev, fe_last, mass[n - 1], gravity);
+    force[0] = first_node_force(fe_first, fe_last, mass[0], gravity);
 }
 
 /// One Kelvin-Voigt element: T = k(l − l⁰) + c·dl/dt with dl/dt = d·(v₂ − v₁)/l; a slack
@@ -121,30 +127,34 @@ pub fn axial_damped(
     tension_only: bool,
     mass: &[f64],
     gravity: f64,
-    element_force: &mut [V2],
     tension: &mut [f64],
     force: &mut [V2],
 ) {
     let n = x.len();
-    for (((((fe, te), (xa, xb)), (va, vb)), (&k, &c)), &l0) in element_force[..n - 1]
+    let element = |e: usize, j: usize| {
+        damped_element(x[j] - x[e], v[j] - v[e], k[e], c[e], l0[e], tension_only)
+    };
+    let (t_last, fe_last) = element(n - 1, 0);
+    let (t_first, fe_first) = element(0, 1);
+    (tension[0], tension[n - 1]) = (t_first, t_last);
+    let mut prev = fe_first;
+    let inner = 1..n - 1;
+    for ((((((f, te), (xa, xb)), (va, vb)), (&k, &c)), &l0), &m) in force[inner.clone()]
         .iter_mut()
-        .zip(tension.iter_mut())
-        .zip(x.iter().zip(&x[1..]))
-        .zip(v.iter().zip(&v[1..]))
-        .zip(k.iter().zip(c))
-        .zip(l0)
+        .zip(&mut tension[inner.clone()])
+        .zip(x[1..].iter().zip(&x[2..]))
+        .zip(v[1..].iter().zip(&v[2..]))
+        .zip(k[inner.clone()].iter().zip(&c[inner.clone()]))
+        .zip(&l0[inner.clone()])
+        .zip(&mass[inner])
     {
-        (*te, *fe) = damped_element(xb - xa, vb - va, k, c, l0, tension_only);
+        let (t, fe) = damped_element(xb - xa, vb - va, k, c, l0, tension_only);
+        *te = t;
+        *f = node_force(prev, fe, m, gravity);
+        prev = fe;
     }
-    (tension[n - 1], element_force[n - 1]) = damped_element(
-        x[0] - x[n - 1],
-        v[0] - v[n - 1],
-        k[n - 1],
-        c[n - 1],
-        l0[n - 1],
-        tension_only,
-    );
-    gather(element_force, mass, gravity, force);
+    force[n - 1] = node_force(prev, fe_last, mass[n - 1], gravity);
+    force[0] = first_node_force(fe_first, fe_last, mass[0], gravity);
 }
 
 /// Rotational bending springs, potential ½·k_θ·θ² per node (thesis eq. 4.11, 4.31).
