@@ -186,3 +186,28 @@ fn bending_force_is_minus_gradient_across_small_and_sharp_kinks() {
         }
     }
 }
+
+/// The bending pass treats the first, the last two and the middle nodes differently (its
+/// sums wrap around the loop): check the smallest loops, where every node is special.
+#[test]
+fn bending_force_is_minus_gradient_on_the_smallest_loops() {
+    for n in 3..=6 {
+        let x = ring(n, 0.2);
+        let kt: Vec<f64> = (0..n).map(|j| 40.0 + 5.0 * j as f64).collect();
+        let mut f = vec![V2::new(0.25, -0.5); n];
+        forces::bending(&x, &kt, &mut f);
+        let energy = |y: &[V2]| bending_energy(y, &kt);
+        for i in 0..n {
+            for c in 0..2 {
+                let g = gradient(&x, i, c, &energy);
+                // Bending adds to what `f` held; same tolerance as above.
+                let added = f[i][c] - [0.25, -0.5][c];
+                assert!(
+                    (added + g).abs() < 1e-5 * (1.0 + g.abs()),
+                    "n {n} node {i} comp {c}: {added} vs {}",
+                    -g
+                );
+            }
+        }
+    }
+}
