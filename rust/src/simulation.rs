@@ -93,7 +93,19 @@ impl Scratch {
 struct Inertia {
     mass: Vec<f64>,
     inv_mass: Vec<f64>,
+    /// `inv_mass` when every node has the same (a uniform belt in dynamics): the
+    /// integration then streams one array less.
+    same_inv_mass: Option<f64>,
     takeup_mass: Vec<f64>,
+}
+
+/// The common value if every element of `values` is the same, bit for bit.
+fn all_same(values: &[f64]) -> Option<f64> {
+    let first = *values.first()?;
+    values
+        .iter()
+        .all(|v| v.to_bits() == first.to_bits())
+        .then_some(first)
 }
 
 impl Inertia {
@@ -101,6 +113,7 @@ impl Inertia {
         Inertia {
             mass: model.mass.clone(),
             inv_mass: model.inv_mass.clone(),
+            same_inv_mass: all_same(&model.inv_mass),
             takeup_mass: model
                 .pulleys
                 .iter()
@@ -128,7 +141,7 @@ impl Inertia {
             .iter()
             .map(|k| (k + takeup_contact) * dt2)
             .collect();
-        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
         let takeup_mass = model
             .pulleys
             .iter()
@@ -142,6 +155,7 @@ impl Inertia {
             .collect();
         Inertia {
             mass,
+            same_inv_mass: all_same(&inv_mass),
             inv_mass,
             takeup_mass,
         }
@@ -547,9 +561,11 @@ impl Simulation {
         let s = &mut self.state;
         let sc = &self.scratch;
         let dt = m.dt;
-        let inv_mass = &self.inertia.inv_mass;
-        let nodes_finite =
-            Self::integrate_nodes(&mut s.position, &mut s.velocity, &sc.force, inv_mass, dt);
+        let (x, v, f) = (&mut s.position, &mut s.velocity, &sc.force);
+        let nodes_finite = match self.inertia.same_inv_mass {
+            Some(im) => Self::integrate_nodes(x, v, f, std::iter::repeat(im), dt),
+            None => Self::integrate_nodes(x, v, f, self.inertia.inv_mass.iter().copied(), dt),
+        };
         let mut check = 0.0;
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
@@ -606,7 +622,13 @@ impl Simulation {
     /// about 1.6× slower (docs/performance.md). The arithmetic is the same operations in the
     /// same order as the portable loop, so the result is the same to the last bit.
     #[inline(always)]
-    fn integrate_nodes(x: &mut [V2], v: &mut [V2], f: &[V2], inv_mass: &[f64], dt: f64) -> bool {
+    fn integrate_nodes(
+        x: &mut [V2],
+        v: &mut [V2],
+        f: &[V2],
+        inv_mass: impl Iterator<Item = f64>,
+        dt: f64,
+    ) -> bool {
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::x86_64::{
@@ -623,7 +645,7 @@ impl Simulation {
                 let infinity = _mm_set1_pd(f64::INFINITY);
                 let magnitude = _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX));
                 let mut finite = _mm_castsi128_pd(_mm_set1_epi64x(-1));
-                for ((x, v), (f, &im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass))
+                for ((x, v), (f, im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass))
                 {
                     let vn = _mm_add_pd(
                         _mm_loadu_pd(v.as_ptr()),
