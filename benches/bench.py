@@ -36,7 +36,8 @@ made in turn from the main thread; timings use ``time.perf_counter``):
    friction (section 1), (3) a 5000-node, 500 m conveyor with carry and return idlers, head
    drive and tail gravity takeup (``bench_scenes.conveyor``), (4) case K with the node model
    (``bench_scenes.kubas_drive``). Targets 2e7 (1) and 1e7 (2-4).
-6. The NumPy reference (``numpy_ref.py``) against beltrs on the same state: the ratio.
+6. The NumPy reference (``numpy_ref.py``) against beltrs on the same state: ``repeats``
+   interleaved samples, the median rates and the median ratio (with its range).
 7. Scaling: ns per node-step against nodes at one fixed step.
 8. Wall time against simulated time for a 1 km conveyor start-up (1e4 nodes, drive torque
    ramped over 10 s; 1 s with --quick).
@@ -402,13 +403,21 @@ def bench_scaling(sizes: list[int], steps: int) -> list[dict[str, Any]]:
 
 def bench_numpy(repeats: int) -> list[dict[str, Any]]:
     """beltrs against benches/numpy_ref.py on the same state (case H 89 nodes; a 1e4-node
-    loop without idlers)."""
+    loop without idlers): ``repeats`` interleaved samples (each times NumPy, then beltrs,
+    from the current state); the medians of each rate and of the per-sample ratios."""
     sim = Simulation(beltrs.scenes.hustrulid_loop(89))
     sim.stabilise()
-    out = [{"case": "case H, 89 nodes", **compare_speed(sim, 2000)}]
     scene = conveyor(1000.0, 10_000, friction=None, drive_torque=0.0)
     scene.idlers = []
-    out.append({"case": "loop, 1e4 nodes, no idlers", **compare_speed(Simulation(scene), 200)})
+    out = []
+    for case, s, steps in (("case H, 89 nodes", sim, 2000), ("loop, 1e4 nodes, no idlers", Simulation(scene), 200)):
+        samples = [compare_speed(s, steps) for _ in range(repeats)]
+        row: dict[str, Any] = {"case": case, "nodes": samples[0]["nodes"], "samples": samples}
+        for key in ("beltrs_node_steps_per_s", "numpy_node_steps_per_s", "ratio"):
+            row[key] = statistics.median(r[key] for r in samples)
+        row["ratio_min"] = min(r["ratio"] for r in samples)
+        row["ratio_max"] = max(r["ratio"] for r in samples)
+        out.append(row)
     return out
 
 
@@ -585,11 +594,12 @@ def main(argv: list[str] | None = None) -> int:
           f"dt limited by {conv['dt_cause']}")
     print(f"loop: dt limited by {loop['dt_cause']}")
 
-    heading("6. NumPy reference (benches/numpy_ref.py), same state, same scene")
+    heading("6. NumPy reference (benches/numpy_ref.py), same state, same scene, interleaved repeats")
     npr = bench_numpy(repeats)
-    print(table(["case", "beltrs node-steps/s", "NumPy node-steps/s", "ratio"],
+    print(table(["case", "beltrs node-steps/s (median)", "NumPy node-steps/s (median)", "ratio (median)",
+                 "ratio range"],
                 [[r["case"], si(r["beltrs_node_steps_per_s"]), si(r["numpy_node_steps_per_s"]),
-                  f"{r['ratio']:.0f}x"] for r in npr]))
+                  f"{r['ratio']:.0f}x", f"{r['ratio_min']:.0f}-{r['ratio_max']:.0f}x"] for r in npr]))
 
     heading("7. Scaling with nodes (fixed dt, conveyor loop without friction)")
     sizes = [1250, 2500, 5000] if args.quick else [1250, 2500, 5000, 10000, 20000, 40000]
@@ -637,7 +647,7 @@ def main(argv: list[str] | None = None) -> int:
         ["(1) Frictionless loop with idlers, 1e4 nodes", f"{si(loop['node_steps_per_s'])} node-steps/s"],
         ["(3) Conveyor, 5000 nodes, idlers + drive + friction", f"{si(conv['node_steps_per_s'])} node-steps/s"],
         ["(4) Case K, 150 nodes, node model", f"{si(kub['node_steps_per_s'])} node-steps/s"],
-        *[[f"beltrs / NumPy, {r['case']}", f"{r['ratio']:.0f}x"] for r in npr],
+        *[[f"beltrs / NumPy, {r['case']} (median of {repeats})", f"{r['ratio']:.0f}x"] for r in npr],
         [f"1 km start-up, 1e4 nodes, {start['rows'][-1]['time']:.0f} s simulated",
          f"{start['rows'][-1]['wall']:.1f} s wall"],
         ["Peak memory (whole bench)", f"{mem:.0f} MB"],

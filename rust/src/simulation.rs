@@ -93,7 +93,19 @@ impl Scratch {
 struct Inertia {
     mass: Vec<f64>,
     inv_mass: Vec<f64>,
+    /// `inv_mass` when every node has the same (a uniform belt in dynamics): the
+    /// integration then streams one array less.
+    same_inv_mass: Option<f64>,
     takeup_mass: Vec<f64>,
+}
+
+/// The common value if every element of `values` is the same, bit for bit.
+fn all_same(values: &[f64]) -> Option<f64> {
+    let first = *values.first()?;
+    values
+        .iter()
+        .all(|v| v.to_bits() == first.to_bits())
+        .then_some(first)
 }
 
 impl Inertia {
@@ -101,6 +113,7 @@ impl Inertia {
         Inertia {
             mass: model.mass.clone(),
             inv_mass: model.inv_mass.clone(),
+            same_inv_mass: all_same(&model.inv_mass),
             takeup_mass: model
                 .pulleys
                 .iter()
@@ -128,7 +141,7 @@ impl Inertia {
             .iter()
             .map(|k| (k + takeup_contact) * dt2)
             .collect();
-        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
         let takeup_mass = model
             .pulleys
             .iter()
@@ -142,6 +155,7 @@ impl Inertia {
             .collect();
         Inertia {
             mass,
+            same_inv_mass: all_same(&inv_mass),
             inv_mass,
             takeup_mass,
         }
@@ -326,7 +340,14 @@ impl Simulation {
         } else {
             dt
         };
-        sc.force.iter_mut().for_each(|f| *f = V2::zeros());
+        // Every model has an axial stage, which writes all node forces (with the weights
+        // when the model has a gravity stage), so the force array needs no reset here.
+        debug_assert!(m.has_stage(Stage::Axial) || m.has_stage(Stage::AxialDamped));
+        let gravity = if m.has_stage(Stage::Gravity) {
+            m.gravity
+        } else {
+            0.0
+        };
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_holds.iter_mut().for_each(|h| *h = false);
@@ -337,22 +358,28 @@ impl Simulation {
         for (k, &stage) in m.stages.iter().enumerate() {
             let started = self.profile.as_ref().map(|_| Instant::now());
             match stage {
-                Stage::Gravity => forces::gravity(&m.mass, m.gravity, &mut sc.force),
+                // The axial pass writes every node force (no reset pass) and adds the
+                // weights (no gravity pass): see forces::axial and docs/performance.md.
+                Stage::Gravity => {}
                 Stage::Axial => forces::axial(
                     &s.position,
                     &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::AxialDamped if !effects.damping => forces::axial(
                     &s.position,
                     &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::AxialDamped => forces::axial_damped(
                     &s.position,
@@ -361,8 +388,10 @@ impl Simulation {
                     &m.axial_damping,
                     &m.rest_length,
                     m.tension_only,
-                    &mut sc.force,
+                    &m.mass,
+                    gravity,
                     &mut sc.tension,
+                    &mut sc.force,
                 ),
                 Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
                 Stage::PulleyContact => {
@@ -537,18 +566,12 @@ impl Simulation {
         let s = &mut self.state;
         let sc = &self.scratch;
         let dt = m.dt;
-        let inv_mass = &self.inertia.inv_mass;
+        let (x, v, f) = (&mut s.position, &mut s.velocity, &sc.force);
+        let nodes_finite = match self.inertia.same_inv_mass {
+            Some(im) => Self::integrate_nodes(x, v, f, std::iter::repeat(im), dt),
+            None => Self::integrate_nodes(x, v, f, self.inertia.inv_mass.iter().copied(), dt),
+        };
         let mut check = 0.0;
-        for ((x, v), (f, im)) in s
-            .position
-            .iter_mut()
-            .zip(s.velocity.iter_mut())
-            .zip(sc.force.iter().zip(inv_mass))
-        {
-            *v += f * (dt * im);
-            *x += *v * dt;
-            check += x.x + x.y + v.x + v.y;
-        }
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
             let old = s.pulley_omega[j];
@@ -583,10 +606,74 @@ impl Simulation {
         s.time += dt;
         s.step += 1;
         check += s.drive_work;
-        if !check.is_finite() {
+        if !(nodes_finite && check.is_finite()) {
             return Err(self.locate_non_finite());
         }
         Ok(())
+    }
+
+    /// Central differences on the nodes: v ← v + Δt·f/m, x ← x + Δt·v. Returns whether every
+    /// new position is finite.
+    ///
+    /// The finiteness check is folded into this loop as a flag per position, not as one
+    /// running sum (a chain of dependent additions through every node, which the compiler
+    /// may not reorder). Testing the new positions suffices: x + v·Δt with Δt > 0 is finite
+    /// only if the old position and the new velocity are finite (or it overflows), so a
+    /// non-finite force, velocity or position is caught in the step that produces it.
+    ///
+    /// On x86-64 the loop is written with SSE2 (part of the x86-64 baseline, so always
+    /// present), one node per 128-bit register: left to itself the compiler vectorises
+    /// across nodes and spends most of the loop de-interleaving x and y, which made it
+    /// about 1.6× slower (docs/performance.md). The arithmetic is the same operations in the
+    /// same order as the portable loop, so the result is the same to the last bit.
+    #[inline(always)]
+    fn integrate_nodes(
+        x: &mut [V2],
+        v: &mut [V2],
+        f: &[V2],
+        inv_mass: impl Iterator<Item = f64>,
+        dt: f64,
+    ) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{
+                _mm_add_pd, _mm_and_pd, _mm_castsi128_pd, _mm_cmplt_pd, _mm_loadu_pd,
+                _mm_movemask_pd, _mm_mul_pd, _mm_set1_epi64x, _mm_set1_pd, _mm_storeu_pd,
+            };
+            // SAFETY: SSE2 is part of the x86-64 baseline, so the intrinsics are available on
+            // every x86-64 target. Each pointer is to the two contiguous f64 of one live
+            // Vector2<f64> (nalgebra stores it as [f64; 2]), borrowed for this iteration
+            // (shared for f, exclusive for x and v); the unaligned loads and stores need no
+            // alignment.
+            unsafe {
+                let step = _mm_set1_pd(dt);
+                let infinity = _mm_set1_pd(f64::INFINITY);
+                let magnitude = _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX));
+                let mut finite = _mm_castsi128_pd(_mm_set1_epi64x(-1));
+                for ((x, v), (f, im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass))
+                {
+                    let vn = _mm_add_pd(
+                        _mm_loadu_pd(v.as_ptr()),
+                        _mm_mul_pd(_mm_loadu_pd(f.as_ptr()), _mm_set1_pd(dt * im)),
+                    );
+                    _mm_storeu_pd(v.as_mut_ptr(), vn);
+                    let xn = _mm_add_pd(_mm_loadu_pd(x.as_ptr()), _mm_mul_pd(vn, step));
+                    _mm_storeu_pd(x.as_mut_ptr(), xn);
+                    finite = _mm_and_pd(finite, _mm_cmplt_pd(_mm_and_pd(xn, magnitude), infinity));
+                }
+                _mm_movemask_pd(finite) == 0b11
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let mut finite = true;
+            for ((x, v), (f, im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass)) {
+                *v += f * (dt * im);
+                *x += *v * dt;
+                finite &= x.x.is_finite() & x.y.is_finite();
+            }
+            finite
+        }
     }
 
     fn locate_non_finite(&self) -> BeltError {

@@ -40,25 +40,87 @@ fn gradient(x: &[V2], i: usize, c: usize, energy: &dyn Fn(&[V2]) -> f64) -> f64 
     (energy(&xp) - energy(&xm)) / (2.0 * h)
 }
 
+/// The axial pass also applies the weights (gravity is folded into it) and writes the
+/// forces rather than adding to them: the output is minus the gradient of strain plus
+/// gravitational energy whatever `f` held before.
 #[test]
-fn axial_force_is_minus_gradient_of_strain_energy() {
+fn axial_force_is_minus_gradient_of_strain_and_gravity_energy() {
     let x = ring(11, 0.3);
     let n = x.len();
     let k: Vec<f64> = (0..n).map(|e| 1e4 * (1.0 + 0.1 * e as f64)).collect();
     let l0: Vec<f64> = (0..n).map(|e| 1.2 + 0.05 * e as f64).collect();
-    let mut f = vec![V2::zeros(); n];
+    let mass: Vec<f64> = (0..n).map(|i| 30.0 + 7.0 * i as f64).collect();
+    let g = 9.81;
+    let mut f = vec![V2::new(1e9, -3e9); n];
     let mut t = vec![0.0; n];
-    forces::axial(&x, &k, &l0, false, &mut f, &mut t);
-    let energy = |y: &[V2]| axial_energy(y, &k, &l0);
+    forces::axial(&x, &k, &l0, false, &mass, g, &mut t, &mut f);
+    let energy = |y: &[V2]| {
+        axial_energy(y, &k, &l0) + y.iter().zip(&mass).map(|(p, m)| m * g * p.y).sum::<f64>()
+    };
     for i in 0..n {
         for c in 0..2 {
-            let g = gradient(&x, i, c, &energy);
+            let grad = gradient(&x, i, c, &energy);
             // Central differences with h = 1e-6 on O(1e4) forces: error ~ h²·E''' ≈ 1e-6 N.
             assert!(
-                (f[i][c] + g).abs() < 1e-4 * (1.0 + g.abs()),
+                (f[i][c] + grad).abs() < 1e-4 * (1.0 + grad.abs()),
                 "node {i} comp {c}: {} vs {}",
                 f[i][c],
-                -g
+                -grad
+            );
+        }
+    }
+    for e in 0..n {
+        let stretch = (x[(e + 1) % n] - x[e]).norm() - l0[e];
+        // The kernel's own expression: equal up to rounding.
+        assert!((t[e] - k[e] * stretch).abs() < 1e-9 * k[e], "element {e}");
+    }
+}
+
+/// Kelvin-Voigt elements: the tension is k(l − l⁰) + c·dl/dt with dl/dt checked by central
+/// differences along the node velocities, and each node gets the tensions along its two
+/// elements (T·∂l/∂x, by central differences) and its weight. Every node, including the
+/// first and last (where the pass closes the loop), is checked.
+#[test]
+fn damped_axial_force_follows_the_element_tensions() {
+    let x = ring(10, 0.25);
+    let n = x.len();
+    let v: Vec<V2> = (0..n)
+        .map(|i| V2::new((1.3 * i as f64).sin(), (0.7 * i as f64).cos()))
+        .collect();
+    let k: Vec<f64> = (0..n).map(|e| 1e4 * (1.0 + 0.1 * e as f64)).collect();
+    let c: Vec<f64> = (0..n).map(|e| 50.0 + 9.0 * e as f64).collect();
+    let l0: Vec<f64> = (0..n).map(|e| 1.2 + 0.05 * e as f64).collect();
+    let mass: Vec<f64> = (0..n).map(|i| 30.0 + 7.0 * i as f64).collect();
+    let g = 9.81;
+    let mut f = vec![V2::new(-7e9, 2e9); n];
+    let mut t = vec![0.0; n];
+    forces::axial_damped(&x, &v, &k, &c, &l0, false, &mass, g, &mut t, &mut f);
+    let length = |y: &[V2], e: usize| (y[(e + 1) % n] - y[e]).norm();
+    let h = 1e-6;
+    let ahead: Vec<V2> = x.iter().zip(&v).map(|(p, w)| p + w * h).collect();
+    let behind: Vec<V2> = x.iter().zip(&v).map(|(p, w)| p - w * h).collect();
+    for e in 0..n {
+        let rate = (length(&ahead, e) - length(&behind, e)) / (2.0 * h);
+        let expected = k[e] * (length(&x, e) - l0[e]) + c[e] * rate;
+        // Central difference of a length with h = 1e-6: truncation ~ h²·|v|³/l ≈ 1e-12 m/s,
+        // rounding ~ 1e-16·l/h ≈ 1e-10 m/s; times c ≈ 1e2 N·s/m: ≤ 1e-7 N.
+        assert!(
+            (t[e] - expected).abs() < 1e-6,
+            "element {e}: {} vs {expected}",
+            t[e]
+        );
+    }
+    for i in 0..n {
+        for comp in 0..2 {
+            let expected: f64 = (0..n)
+                .map(|e| -t[e] * gradient(&x, i, comp, &|y: &[V2]| length(y, e)))
+                .sum::<f64>()
+                - if comp == 1 { mass[i] * g } else { 0.0 };
+            // ∂l/∂x by central differences (h = 1e-6): ~1e-10 absolute, on O(1e4) N.
+            assert!(
+                (f[i][comp] - expected).abs() < 1e-4 * (1.0 + expected.abs()),
+                "node {i} comp {comp}: {} vs {expected}",
+                f[i][comp]
             );
         }
     }
@@ -121,6 +183,31 @@ fn bending_force_is_minus_gradient_across_small_and_sharp_kinks() {
                 f[i][c],
                 -g
             );
+        }
+    }
+}
+
+/// The bending pass treats the first, the last two and the middle nodes differently (its
+/// sums wrap around the loop): check the smallest loops, where every node is special.
+#[test]
+fn bending_force_is_minus_gradient_on_the_smallest_loops() {
+    for n in 3..=6 {
+        let x = ring(n, 0.2);
+        let kt: Vec<f64> = (0..n).map(|j| 40.0 + 5.0 * j as f64).collect();
+        let mut f = vec![V2::new(0.25, -0.5); n];
+        forces::bending(&x, &kt, &mut f);
+        let energy = |y: &[V2]| bending_energy(y, &kt);
+        for i in 0..n {
+            for c in 0..2 {
+                let g = gradient(&x, i, c, &energy);
+                // Bending adds to what `f` held; same tolerance as above.
+                let added = f[i][c] - [0.25, -0.5][c];
+                assert!(
+                    (added + g).abs() < 1e-5 * (1.0 + g.abs()),
+                    "n {n} node {i} comp {c}: {added} vs {}",
+                    -g
+                );
+            }
         }
     }
 }
