@@ -361,31 +361,22 @@ impl Simulation {
                 // The axial pass writes every node force (no reset pass) and adds the
                 // weights (no gravity pass): see forces::axial and docs/performance.md.
                 Stage::Gravity => {}
-                Stage::Axial => forces::axial(
-                    &s.position,
-                    &m.axial_stiffness,
-                    &m.rest_length,
-                    m.tension_only,
-                    &m.mass,
-                    gravity,
-                    &mut sc.tension,
-                    &mut sc.force,
-                ),
-                Stage::AxialDamped if !effects.damping => forces::axial(
-                    &s.position,
-                    &m.axial_stiffness,
-                    &m.rest_length,
-                    m.tension_only,
-                    &m.mass,
-                    gravity,
-                    &mut sc.tension,
-                    &mut sc.force,
-                ),
-                Stage::AxialDamped => forces::axial_damped(
+                Stage::AxialDamped if effects.damping => forces::axial_damped(
                     &s.position,
                     &s.velocity,
                     &m.axial_stiffness,
                     &m.axial_damping,
+                    &m.rest_length,
+                    m.tension_only,
+                    &m.mass,
+                    gravity,
+                    &mut sc.tension,
+                    &mut sc.force,
+                ),
+                // The relaxation runs damped elements undamped (see `Effects::damping`).
+                Stage::Axial | Stage::AxialDamped => forces::axial(
+                    &s.position,
+                    &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
                     &m.mass,
