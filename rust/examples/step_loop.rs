@@ -75,42 +75,11 @@ fn case_h(elements: usize) -> Scene {
         static_coefficient: 0.3,
         kinetic_coefficient: 0.25,
     };
-    Scene {
-        belt: BeltParams {
-            axial_stiffness: 300e6 * 0.0254,
-            mass_per_length: 100.0,
-            bending_stiffness: 300e6 * 0.0254f64.powi(3) / 12.0,
-            elements: Some(elements),
-            ..Default::default()
-        },
-        pulleys: vec![
-            PulleySpec {
-                name: "upper".into(),
-                center: [0.0, 100.0],
-                radius: 5.0,
-                mass: 600.0,
-                inertia: Some(15_000.0),
-                contact_stiffness: 2e8,
-                friction,
-                ..Default::default()
-            },
-            PulleySpec {
-                name: "takeup".into(),
-                center: [0.0, 0.0],
-                radius: 5.0,
-                mass: 600.0,
-                inertia: Some(15_000.0),
-                contact_stiffness: 2e8,
-                friction,
-                takeup: Some(TakeupSpec {
-                    counterweight: 30_000.0,
-                    ..Default::default()
-                }),
-                ..Default::default()
-            },
-        ],
-        ..Default::default()
+    let mut scene = beltrs::presets::case_h(elements);
+    for p in &mut scene.pulleys {
+        p.friction = friction;
     }
+    scene
 }
 
 fn main() {

@@ -20,6 +20,7 @@ pub mod forces;
 pub mod friction;
 pub mod geometry;
 pub mod model;
+pub mod presets;
 pub mod record;
 pub mod scene;
 pub mod simulation;
