@@ -306,3 +306,18 @@ def test_overflowing_drive_work_stops_the_run():
     with pytest.raises(DivergenceError, match=r"step 1\): work done of the drives"):
         sim.advance(300)
     assert len(sim.recording()["time"]) == 1
+
+
+def test_absurdly_soft_belt_does_not_ask_for_an_endless_continuation():
+    # Regression (found by the fuzzer, killed CI by memory): EA = 5e-324 N made the static
+    # relaxation's continuation in contact stiffness start at a ratio of zero and push
+    # stages without end. The ladder is now at most 8 stages.
+    scene = {
+        "belt": {"axial_stiffness": 5e-324, "bending_stiffness": 656.0, "elements": 208, "mass_per_length": 21.1},
+        "gravity": 6.1e-05,
+        "pulleys": [
+            {"center": [6.75, 0.0], "contact_stiffness": 1.9e8, "mass": 3125.9, "radius": 3.66, "wrap": "cw"},
+            {"center": [-6.75, 0.0], "contact_stiffness": 5.4e8, "mass": 2790.4, "radius": 0.5, "wrap": "cw"},
+        ],
+    }
+    exercise(scene)

@@ -167,6 +167,8 @@ impl Inertia {
 pub const CONTINUATION_START: f64 = 100.0;
 /// Factor between successive contact stiffnesses of the continuation.
 pub const CONTINUATION_FACTOR: f64 = 10.0;
+/// Most stages of the continuation (it starts no softer than 10^-8 of the scene's contact).
+pub const CONTINUATION_STAGES: i32 = 8;
 
 /// The scene with every pulley and idler contact stiffness multiplied by `scale`.
 fn soften_contact(scene: &Scene, scale: f64) -> Scene {
@@ -1047,7 +1049,10 @@ impl Simulation {
             .zip(&m.rest_length)
             .map(|(ea, l)| ea / l)
             .fold(0.0, f64::max);
-        let start = CONTINUATION_START * stiffest_element / stiffest_contact;
+        // At most CONTINUATION_STAGES stages: an absurdly soft belt (EA → 0) must not ask
+        // for an endless ladder (found by the fuzzer: EA = 5e-324 allocated without end).
+        let floor = CONTINUATION_FACTOR.powi(-CONTINUATION_STAGES);
+        let start = (CONTINUATION_START * stiffest_element / stiffest_contact).max(floor);
         let mut ladder = Vec::new();
         let mut scale = start;
         while scale < 1.0 / CONTINUATION_FACTOR.sqrt() {
