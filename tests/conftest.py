@@ -1,8 +1,20 @@
-"""Shared fixtures: case H stabilised once per session (each test copies what it changes)."""
+"""Shared fixtures: case H stabilised once per session (each test copies what it changes).
+
+Hypothesis runs derandomized by default (profile "ci"), so that the suite, CI included,
+draws the same examples every time and a red run can be reproduced. For fresh random
+examples when hunting bugs: HYPOTHESIS_PROFILE=explore python -m pytest tests/test_fuzz_scenes.py
+"""
+
+import os
 
 import pytest
+from hypothesis import settings
 
 import beltrs
+
+settings.register_profile("ci", derandomize=True)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 
 def stabilised(elements: int = 89, tolerance: float = 1e-7, **kw):
