@@ -244,6 +244,8 @@ pub fn idler_contact(
     let dist_of = |e: usize| segment_distance(body.center, x[e], x[(e + 1) % n]);
     let mut e = *element % n;
     let mut best = dist_of(e);
+    // Distances of the tracked element's two neighbours, reused for their contact below.
+    let mut around = None;
     for _ in 0..n {
         let back = (e + n - 1) % n;
         let fwd = (e + 1) % n;
@@ -256,17 +258,18 @@ pub fn idler_contact(
             e = fwd;
             best = df;
         } else {
+            around = Some((db, df));
             break;
         }
     }
     *element = e;
+    let (db, df) = around.unwrap_or_else(|| (dist_of((e + n - 1) % n), dist_of((e + 1) % n)));
     // The tracked element and both neighbours may press on the roll. Near a node the belt
     // polygon kinks over the roll and two elements penetrate it; taking only the nearest
     // would flip the force between their two normals as the node passes (and chatter in
     // statics), while the sum turns smoothly from one to the other.
     let mut out = IdlerContact::default();
-    for k in [(e + n - 1) % n, e, (e + 1) % n] {
-        let (dist, gamma, closest) = if k == e { best } else { dist_of(k) };
+    for (k, (dist, gamma, closest)) in [((e + n - 1) % n, db), (e, best), ((e + 1) % n, df)] {
         if dist >= body.radius {
             continue;
         }

@@ -159,7 +159,7 @@ pub fn pulley_stick_friction(
         let Some((k, _, f)) = worst else {
             break;
         };
-        let fk = pulley.mu_kinetic * contacts.normal_force[k] * f.signum();
+        let (fk, _) = limit(f, contacts.normal_force[k], pulley);
         scratch.force[k] = fk;
         scratch.sticking[k] = false;
         known_torque += r * fk;

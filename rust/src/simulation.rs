@@ -5,7 +5,7 @@ use crate::contact::{self, IdlerBody, IdlerContact, PulleyBody, PulleyContacts};
 use crate::error::{BeltError, BeltResult};
 use crate::forces;
 use crate::friction::{self, FrictionIdler, FrictionOutcome, FrictionPulley, StickScratch};
-use crate::model::{Model, Stage};
+use crate::model::{Model, Stage, TakeupModel};
 use crate::record::{Channels, Energies, Recording};
 use crate::scene::{FrictionModel, Scene};
 use crate::state::State;
@@ -70,6 +70,18 @@ pub struct Scratch {
 }
 
 impl Scratch {
+    /// Net torque on pulley `j` from the last force evaluation (belt friction, drive and
+    /// brake), N·m.
+    fn pulley_torque(&self, j: usize) -> f64 {
+        self.friction[j].torque + self.drive_torque[j] + self.brake_torque[j]
+    }
+
+    /// Net force along its line on takeup `t` of pulley `j` (counterweight pull plus the
+    /// belt's force on the pulley), N.
+    fn takeup_force(&self, j: usize, t: &TakeupModel) -> f64 {
+        t.direction.dot(&self.pulley_force[j]) + t.pull
+    }
+
     fn new(model: &Model) -> Scratch {
         let (n, p, q) = (model.nodes, model.pulleys.len(), model.idlers.len());
         Scratch {
@@ -566,7 +578,7 @@ impl Simulation {
         };
         let mut check = 0.0;
         for (j, p) in m.pulleys.iter().enumerate() {
-            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let torque = sc.pulley_torque(j);
             let old = s.pulley_omega[j];
             // A holding brake stops the pulley this step; say so exactly.
             let new = if sc.brake_holds[j] {
@@ -579,7 +591,7 @@ impl Simulation {
             s.pulley_angle[j] += new * dt;
             check += new + s.pulley_angle[j];
             if let Some(t) = &p.takeup {
-                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let f = sc.takeup_force(j, t);
                 s.takeup_speed[j] += dt * f / self.inertia.takeup_mass[j];
                 s.takeup_travel[j] += dt * s.takeup_speed[j];
                 if s.takeup_travel[j] < t.travel_min {
@@ -838,11 +850,11 @@ impl Simulation {
             }
         }
         for (j, p) in m.pulleys.iter().enumerate() {
-            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let torque = sc.pulley_torque(j);
             let w = s.pulley_omega[j] + half * torque / p.inertia;
             e.kinetic += 0.5 * p.inertia * w * w;
             if let Some(t) = &p.takeup {
-                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let f = sc.takeup_force(j, t);
                 let u = s.takeup_speed[j] + half * f / self.inertia.takeup_mass[j];
                 e.kinetic += 0.5 * t.moving_mass * u * u;
                 e.gravity -= t.pull * s.takeup_travel[j];
@@ -903,7 +915,7 @@ impl Simulation {
             let c = s.pulley_center(m, j);
             r.pulley_position.extend_from_slice(&[c.x, c.y]);
             r.takeup_travel.push(s.takeup_travel[j]);
-            let torque = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let torque = sc.pulley_torque(j);
             r.pulley_speed
                 .push(s.pulley_omega[j] + half * torque / p.inertia);
             r.friction_torque.push(sc.friction[j].torque);
@@ -941,7 +953,7 @@ impl Simulation {
         let mut worst = sc.force.iter().map(|f| f.norm()).fold(0.0, f64::max);
         for (j, p) in self.model.pulleys.iter().enumerate() {
             if let Some(t) = &p.takeup {
-                worst = worst.max((t.direction.dot(&sc.pulley_force[j]) + t.pull).abs());
+                worst = worst.max(sc.takeup_force(j, t).abs());
             }
         }
         let scale = sc
@@ -983,52 +995,59 @@ impl Simulation {
             return self.relax(options);
         }
         let full = self.model.clone();
+        let stages = self.relax_softened(&full.scene, &ladder, options);
+        // Back to the scene's own stiffness, whatever the softened stages did.
+        self.model = full;
+        self.scratch = Scratch::new(&self.model);
+        self.inertia = Inertia::physical(&self.model);
+        let mut total = stages?;
+        let remaining = options.max_steps - total.steps;
+        // Converged only once the scene's own stiffness has relaxed too.
+        if total.converged {
+            total.converged = false;
+            if remaining > 0 {
+                let r = self.relax(&StabiliseOptions {
+                    max_steps: remaining,
+                    ..*options
+                })?;
+                total.steps += r.steps;
+                total.resets += r.resets;
+                total.residual = r.residual;
+                total.converged = r.converged;
+            }
+        }
+        Ok(total)
+    }
+
+    /// Relax at each contact-stiffness `scales` of `scene` in turn, each stage from the
+    /// previous one's equilibrium, stopping at the first that does not converge. Leaves the
+    /// softened model in place (the caller restores the scene's own).
+    fn relax_softened(
+        &mut self,
+        scene: &Scene,
+        scales: &[f64],
+        options: &StabiliseOptions,
+    ) -> BeltResult<StabiliseReport> {
         let mut total = StabiliseReport {
             steps: 0,
             residual: f64::INFINITY,
             converged: false,
             resets: 0,
         };
-        for scale in ladder {
-            let soft = Model::compile(&soften_contact(&full.scene, scale));
-            let stage = soft.and_then(|soft| {
-                self.model = soft;
-                self.scratch = Scratch::new(&self.model);
-                self.relax(&StabiliseOptions {
-                    max_steps: options.max_steps - total.steps,
-                    ..*options
-                })
-            });
-            match stage {
-                Ok(r) => {
-                    total.steps += r.steps;
-                    total.resets += r.resets;
-                    total.residual = r.residual;
-                    if !r.converged {
-                        break;
-                    }
-                }
-                Err(e) => {
-                    self.model = full;
-                    self.scratch = Scratch::new(&self.model);
-                    self.inertia = Inertia::physical(&self.model);
-                    return Err(e);
-                }
-            }
-        }
-        let remaining = options.max_steps - total.steps;
-        self.model = full;
-        self.scratch = Scratch::new(&self.model);
-        self.inertia = Inertia::physical(&self.model);
-        if total.steps > 0 && remaining > 0 && total.residual.is_finite() {
+        for &scale in scales {
+            self.model = Model::compile(&soften_contact(scene, scale))?;
+            self.scratch = Scratch::new(&self.model);
             let r = self.relax(&StabiliseOptions {
-                max_steps: remaining,
+                max_steps: options.max_steps - total.steps,
                 ..*options
             })?;
             total.steps += r.steps;
             total.resets += r.resets;
             total.residual = r.residual;
             total.converged = r.converged;
+            if !r.converged {
+                break;
+            }
         }
         Ok(total)
     }
@@ -1132,13 +1151,13 @@ impl Simulation {
         }
         for (j, p) in self.model.pulleys.iter().enumerate() {
             if let Some(t) = &p.takeup {
-                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let f = sc.takeup_force(j, t);
                 if s.takeup_speed[j] * f < 0.0 {
                     s.takeup_speed[j] = 0.0;
                     resets += 1;
                 }
             }
-            let t = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let t = sc.pulley_torque(j);
             if s.pulley_omega[j] * t < 0.0 {
                 s.pulley_omega[j] = 0.0;
                 resets += 1;
@@ -1261,7 +1280,7 @@ impl Simulation {
         }
         for (j, pl) in self.model.pulleys.iter().enumerate() {
             if let Some(t) = &pl.takeup {
-                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let f = sc.takeup_force(j, t);
                 let v = s.takeup_speed[j];
                 let m = self.inertia.takeup_mass[j];
                 p += v * f;
@@ -1270,7 +1289,7 @@ impl Simulation {
             }
         }
         for (j, pl) in self.model.pulleys.iter().enumerate() {
-            let (w, t) = (s.pulley_omega[j], self.pulley_torque(j));
+            let (w, t) = (s.pulley_omega[j], sc.pulley_torque(j));
             p += w * t;
             vv += pl.inertia * w * w;
             ff += t * t / pl.inertia;
@@ -1298,24 +1317,18 @@ impl Simulation {
         }
         for (j, pl) in self.model.pulleys.iter().enumerate() {
             if let Some(t) = &pl.takeup {
-                let f = t.direction.dot(&sc.pulley_force[j]) + t.pull;
+                let f = sc.takeup_force(j, t);
                 s.takeup_speed[j] =
                     s.takeup_speed[j] * keep + f * mix / self.inertia.takeup_mass[j];
             }
         }
         for (j, pl) in self.model.pulleys.iter().enumerate() {
-            let t = sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j];
+            let t = sc.pulley_torque(j);
             s.pulley_omega[j] = s.pulley_omega[j] * keep + t * mix / pl.inertia;
         }
         for (k, d) in self.model.idlers.iter().enumerate() {
             s.idler_omega[k] = s.idler_omega[k] * keep + sc.idler_torque[k] * mix / d.inertia;
         }
-    }
-
-    /// Net torque on pulley `j` from the last force evaluation, N·m.
-    fn pulley_torque(&self, j: usize) -> f64 {
-        let sc = &self.scratch;
-        sc.friction[j].torque + sc.drive_torque[j] + sc.brake_torque[j]
     }
 
     /// Forces at the current state without stepping (for inspection and tests).
