@@ -154,19 +154,7 @@ def bench_case_h(friction: Friction | None, steps: int, repeats: int) -> dict[st
     """node-steps/s of step() on stabilised case H."""
     sim = Simulation(beltrs.scenes.hustrulid_loop(89, friction=friction))
     stab_wall = timed(sim.stabilise)
-    sim.step(1000)  # warm-up, untimed
-    walls = [timed(lambda: sim.step(steps)) for _ in range(repeats)]
-    s = summary(walls)
-    return {
-        "nodes": sim.nodes,
-        "steps": steps,
-        "dt": sim.dt,
-        "stages": sim.stages,
-        "stabilise_wall": stab_wall,
-        "wall": s,
-        "node_steps_per_s": sim.nodes * steps / s["median"],
-        "best_node_steps_per_s": sim.nodes * steps / s["min"],
-    }
+    return {**throughput(sim, steps, repeats), "stabilise_wall": stab_wall}
 
 
 # --- 2. long loop -----------------------------------------------------------------------
