@@ -12,7 +12,9 @@ __all__ = [
     "hustrulid_tangent_tensions",
     "hustrulid_wave_speed",
     "oscillation",
+    "probe_run",
     "strand_tension",
+    "tension_at",
 ]
 
 
@@ -48,6 +50,55 @@ def strand_tension(
         raise ValueError(f"fewer than 2 elements lie on the strand {list(p0)} -> {list(p1)}")
     b, a = np.polyfit(mid[keep], t[keep], 1)
     return float(a + b * ((q - p0) @ u))
+
+
+def tension_at(node_position: np.ndarray, tension: np.ndarray, point: Sequence[float]) -> np.ndarray:
+    """Tension (N) of the element passing nearest a fixed point (m): a tension sensor at
+    ``point`` that the belt runs past. Accepts one instant (positions ``[E, 2]``, tensions
+    ``[E]``, returns a 0-d array) or a recording (``[S, E, 2]`` and ``[S, E]``, returns
+    ``[S]``). The element's distance is measured from its midpoint."""
+    x = np.asarray(node_position, dtype=float)
+    t = np.asarray(tension, dtype=float)
+    mid = 0.5 * (x + np.roll(x, -1, axis=-2))
+    d2 = ((mid - np.asarray(point, dtype=float)) ** 2).sum(axis=-1)
+    nearest = np.argmin(d2, axis=-1)
+    return np.take_along_axis(t, np.expand_dims(nearest, -1), axis=-1)[..., 0]
+
+
+def probe_run(sim, points: Sequence[Sequence[float]], duration: float, interval: float) -> dict[str, np.ndarray]:
+    """Run ``sim`` for ``duration`` s, reading the belt tension at fixed ``points`` (m)
+    every ``interval`` s (rounded to whole steps) without recording whole-belt arrays:
+    memory stays O(samples x points) however long the belt.
+
+    Returns a dict of arrays: ``time`` [S] (s), ``tension`` [S, P] (N, see
+    :func:`tension_at`), ``pulley_speed`` [S, pulleys] (rad/s) and ``takeup_travel``
+    [S, pulleys] (m), sampled at the start and after each interval.
+    """
+    every = max(1, int(round(interval / sim.dt)))
+    total = int(round(duration / sim.dt))
+    times, tensions, speeds, travel = [], [], [], []
+
+    def sample() -> None:
+        state = sim.state()
+        tension = sim.tensions()
+        times.append(state["time"])
+        tensions.append([float(tension_at(state["node_position"], tension, p)) for p in points])
+        speeds.append(np.array(state["pulley_speed"]))
+        travel.append(np.array(state["takeup_travel"]))
+
+    sample()
+    done = 0
+    while done < total:
+        n = min(every, total - done)
+        sim.step(n)
+        done += n
+        sample()
+    return {
+        "time": np.array(times),
+        "tension": np.array(tensions),
+        "pulley_speed": np.array(speeds),
+        "takeup_travel": np.array(travel),
+    }
 
 
 def belt_coordinate(rest_length: np.ndarray) -> np.ndarray:

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from typing import Optional
+from typing import Any, Optional
 
-from .scene import Belt, Drive, Friction, Idler, Pulley, Recording, Scene, Solver, Takeup
+from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 
-__all__ = ["hustrulid_loop", "hustrulid_torque_pulse", "idler_conveyor"]
+__all__ = ["concave_conveyor", "guo_wang_conveyor", "hustrulid_loop", "hustrulid_torque_pulse", "idler_conveyor"]
 
 
 def hustrulid_loop(
@@ -152,28 +152,24 @@ def idler_conveyor(
         Pulley(name="head", center=(length, 0.0), mass=800.0, drive=drive, **common),  # type: ignore[arg-type]
     ]
 
-    def row(y: float, pitch: float) -> list[Idler]:
-        count = math.floor((length - 2 * r) / pitch)
-        x0 = 0.5 * (length - (count - 1) * pitch)  # centred between the pulleys
-        # round(): keep idler positions like 1.4 exact in scene files (no 1.3999999999999986).
-        return [
-            Idler(
-                center=(round(x0 + i * pitch, 9), y),
-                radius=roll,
-                contact_stiffness=1e8,
-                contact_damping=1000.0,
-                friction=idler_friction,
-            )
-            for i in range(count)
-        ]
-
-    idlers = row(r - roll, carry_spacing) + row(-r - roll, return_spacing)
+    rolls = dict(radius=roll, contact_stiffness=1e8, contact_damping=1000.0, friction=idler_friction)
+    idlers = _idler_row(length, r, r - roll, carry_spacing, **rolls)
+    idlers += _idler_row(length, r, -r - roll, return_spacing, **rolls)
     return Scene(
         belt=belt,
         pulleys=pulleys,
         idlers=idlers,
         recording=Recording(duration=8.0, interval=0.01, channels=("tension", "node_position")),
     )
+
+
+def _idler_row(length: float, pulley_radius: float, y: float, pitch: float, **idler: Any) -> list[Idler]:
+    """Idlers at height ``y`` every ``pitch`` m between two pulleys of ``pulley_radius`` at
+    x = 0 and x = ``length``, centred between them; ``idler`` are the Idler fields."""
+    count = math.floor((length - 2 * pulley_radius) / pitch)
+    x0 = 0.5 * (length - (count - 1) * pitch)
+    # round(): keep idler positions like 1.4 exact in scene files (no 1.3999999999999986).
+    return [Idler(center=(round(x0 + i * pitch, 9), y), **idler) for i in range(count)]
 
 
 def concave_conveyor(
@@ -247,3 +243,128 @@ def concave_conveyor(
         max_element_angle=math.pi / 12,
     )
     return Scene(belt=belt, pulleys=pulleys, idlers=idlers)
+
+
+# Case G (reference-cases.md; Guo & Wang 2020, Table 1): the values the paper gives, and
+# the documented, typical values chosen where it gives none (every one listed in
+# :func:`guo_wang_conveyor`).
+GUO_WANG = dict(
+    length=972.0,  # m, transport distance (paper)
+    speed=2.0,  # m/s (paper)
+    material=55.6,  # kg/m: 400 t/h at 2 m/s (paper: 56 kg/m)
+    belt_mass=24.5,  # kg/m (paper)
+    drum_radius=0.4,  # m, drive drum 0.8 m diameter (paper)
+    drum_mass=800.0,  # kg (paper)
+    motor_power=150e3,  # W (paper)
+    motor_speed=1000.0 * 2 * math.pi / 60,  # rad/s, 1000 rpm (paper)
+    axial_stiffness=80e6,  # N: ST1250 steel cord, 1 m wide (assumed, see below)
+    f=0.02,  # DIN 22101 artificial friction coefficient (reference-cases.md)
+    carry_pitch=1.2,  # m (assumed)
+    return_pitch=3.0,  # m (assumed)
+    carry_rotating_mass=20.0,  # kg per carry idler set (assumed)
+    return_rotating_mass=15.0,  # kg per return idler (assumed)
+    roll_radius=0.0665,  # m, 133 mm rolls (assumed)
+    takeup_tension=50e3,  # N per strand at the tail (assumed: counterweight 10.2 t)
+    motor_inertia=3.0,  # kg*m^2, motor rotor + coupling (assumed)
+    torque_limit=1.6,  # x rated motor torque: the drive's current limit (assumed)
+)
+
+
+def guo_wang_conveyor(
+    start_curve: Optional[StartCurve] = None,
+    *,
+    length: float = GUO_WANG["length"],
+    element_length: float = 0.3,
+    elements: Optional[int] = None,
+    material: float = GUO_WANG["material"],
+    f: float = GUO_WANG["f"],
+    takeup_tension: float = GUO_WANG["takeup_tension"],
+    time_step_fraction: float = 0.5,
+) -> Scene:
+    """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (seed 001, Table 1),
+    started by a speed-controlled drive along ``start_curve``.
+
+    From the paper: 972 m between pulley centres, horizontal; 400 t/h at 2 m/s, so
+    55.6 kg/m of material on the carry strand; belt 1 m wide, 24.5 kg/m, rated 1250 N/mm;
+    drive drum 0.8 m diameter, 800 kg; motor 150 kW at 1000 rpm.
+
+    Assumed (the paper gives none of these; typical values, reference-cases.md):
+
+    - Belt: steel cord ST1250, EA = 80 MN (elongation about 0.16 % at 10 % of the rated
+      1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
+      critical, elements of ``element_length`` m (0.3: a quarter of the carry pitch, so the
+      polygonal belt does not rattle on the rolls; docs/stability.md).
+    - Layout: tail pulley ("tail", radius 0.4 m, 500 kg) at (0, 0) on a horizontal
+      gravity takeup pulled in -x with 2 x ``takeup_tension`` (default 50 kN per strand, a
+      10.2 t counterweight over a sheave), chosen so that the slack side keeps the head
+      drive below its capstan limit in a 10 s start (T1/T2 about 2.8 against
+      e^(0.35 pi) = 3.0). Head drive pulley ("head", radius 0.4 m, 800 kg, inertia
+      100 kg*m^2: a drum shell, 0.8 m r^2) at (``length``, 0); lagged: mu_s 0.4, mu_k 0.35.
+      The belt runs counter-clockwise in node order; the carry (top) strand moves towards
+      the head, so the drive turns clockwise (negative speeds).
+    - Idlers: troughed carry sets every 1.2 m with 20 kg of rotating rolls each
+      (16.7 kg/m), return rolls every 3 m with 15 kg (5 kg/m); rolls 133 mm, inertia
+      0.8 m r^2 (tubes); DIN 22101 f = ``f`` (0.02) on every idler (running resistance on
+      the weight they carry plus the rolls' own); belt-roll friction 0.5 so the rolls turn
+      with the belt; contact 1e8 N/m with about half-critical damping for one node.
+    - Material ``material`` kg/m (55.6) from a loading point 5 m from the tail centre to
+      the head pulley's top, loaded at constant kg per metre of belt (a volumetric feeder).
+    - Drive: speed controlled along ``start_curve`` (default Harrison, 10 s to 2 m/s), with
+      a torque limit of 1.6 x the motor's rated torque at the drum (150 kW at 1000 rpm
+      through a gearbox of ratio 1000 rpm / (2 m/s / 0.4 m) = 20.9: 29.9 kN*m rated,
+      47.9 kN*m limit), motor inertia 3 kg*m^2 at the motor (1310 kg*m^2 at the drum).
+
+    Args:
+        start_curve: the drive's starting curve. Its ``speed`` is the belt speed, m/s;
+            a positive value is converted to the clockwise (negative) sense of this
+            layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
+        length: centre distance, m. Default 972 (shorter conveyors for quick studies).
+        element_length: target element length, m. Default 0.3.
+        elements: belt elements; overrides ``element_length`` (for
+            :func:`beltrs.study.accuracy_cost`). Default None.
+        material: kg per metre of belt on the carry strand. Default 55.6.
+        f: DIN 22101 coefficient on every idler. Default 0.02.
+        takeup_tension: tension per strand at the tail, N. Default 50 kN.
+        time_step_fraction: of the stability limit. Default 0.5.
+    """
+    from dataclasses import replace
+
+    p = GUO_WANG
+    if start_curve is None:
+        start_curve = StartCurve(shape="harrison", speed=p["speed"], ramp=10.0)
+    if start_curve.speed > 0:  # the carry strand moves towards the head: clockwise drive
+        creep = None if start_curve.creep_speed is None else -start_curve.creep_speed
+        start_curve = replace(start_curve, speed=-start_curve.speed, creep_speed=creep)
+    r = p["drum_radius"]
+    ratio = p["motor_speed"] / (p["speed"] / r)
+    rated = p["motor_power"] / p["motor_speed"] * ratio  # N*m at the drum
+    drive = Drive(start_curve=start_curve, max_torque=p["torque_limit"] * rated,
+                  inertia=p["motor_inertia"] * ratio**2)
+    lagging = Friction(static=0.4, kinetic=0.35)
+    pulleys = [
+        Pulley(name="tail", center=(0.0, 0.0), radius=r, mass=500.0, inertia=0.8 * 500.0 * r * r,
+               friction=lagging, contact_stiffness=1e8,
+               takeup=Takeup(counterweight=2 * takeup_tension / 9.81, direction=(-1.0, 0.0))),
+        Pulley(name="head", center=(length, 0.0), radius=r, mass=p["drum_mass"], inertia=100.0,
+               friction=lagging, contact_stiffness=1e8, drive=drive),
+    ]
+    roll = p["roll_radius"]
+    rolls = dict(radius=roll, contact_stiffness=1e8, friction=Friction(static=0.5, kinetic=0.5), resistance=f)
+    carry_mass, return_mass = p["carry_rotating_mass"], p["return_rotating_mass"]
+    idlers = _idler_row(length, r, r - roll, p["carry_pitch"], rotating_mass=carry_mass,
+                        inertia=0.8 * carry_mass * roll**2, contact_damping=5e4, **rolls)
+    idlers += _idler_row(length, r, -r - roll, p["return_pitch"], rotating_mass=return_mass,
+                         inertia=0.8 * return_mass * roll**2, contact_damping=1.5e4, **rolls)
+    path = 2 * length + 2 * math.pi * r
+    belt = Belt(
+        axial_stiffness=p["axial_stiffness"],
+        mass_per_length=p["belt_mass"],
+        bending_stiffness=20.0,
+        damping_ratio=0.05,
+        elements=elements if elements is not None else math.ceil(path / element_length),
+    )
+    loads = [Load(mass_per_length=material, start=(5.0, r), end=(length, r))] if material > 0 else []
+    return Scene(belt=belt, pulleys=pulleys, idlers=idlers, loads=loads,
+                 solver=Solver(time_step_fraction=time_step_fraction),
+                 recording=Recording(duration=start_curve.prestart + start_curve.ramp + 5.0, interval=0.05,
+                                     channels=("tension", "node_position")))
