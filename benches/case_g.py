@@ -1,0 +1,206 @@
+"""Case G: Guo & Wang's 972 m conveyor started along four starting curves, in 10 s and 30 s,
+with and without a 3 s pre-start section; steady running against DIN 22101.
+
+Writes docs/case-g.md and docs/img/case_g_*.png. Run from the repository root with beltrs
+installed::
+
+    python benches/case_g.py            # the whole study (about 15-25 minutes, one thread)
+    python benches/case_g.py --quick    # a 200 m conveyor, 3 runs (about a minute)
+
+The scene and every assumption: :func:`beltrs.scenes.guo_wang_conveyor`. The tight-side
+tension is read 10 m before the head pulley on the carry strand and the slack side 10 m
+after it on the return strand (the paper's sensors sat under a carry idler about 10 m from
+the head), every 20 ms, by :func:`beltrs.analysis.probe_run`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import pathlib
+import platform
+import sys
+import time
+from typing import Any
+
+import numpy as np
+
+import beltrs
+from beltrs import din22101
+from beltrs.analysis import probe_run
+from beltrs.scenes import GUO_WANG, guo_wang_conveyor
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SHAPES = ("harrison", "nordell", "cubic", "linear")
+PROBE = 10.0  # m from the head pulley centre
+INTERVAL = 0.02  # s between probe readings
+SETTLE = 15.0  # s of running after the ramp
+STEADY_WINDOW = 5.0  # s averaged at the end for the steady state
+STABILISE = {"tolerance": 1e-5, "max_steps": 400_000}
+
+
+def din_reference(length: float, r: float) -> dict[str, float]:
+    """DIN 22101 steady tensions at the two probes for the scene's parameters."""
+    p = GUO_WANG
+    free = length - 2 * r  # strand length resting on idlers (pulley centre to centre less the pulleys)
+    res = din22101.resistances(
+        carry_length=free, return_length=free, belt_mass=p["belt_mass"], material_mass=p["material"],
+        speed=p["speed"], f=p["f"], carry_rotating_mass=p["carry_rotating_mass"] / p["carry_pitch"],
+        return_rotating_mass=p["return_rotating_mass"] / p["return_pitch"], loaded_length=length - 5.0)
+    t = din22101.head_drive_tensions(res, takeup_pull=2 * p["takeup_tension"])
+    g, f = 9.81, p["f"]
+    carry_per_m = f * g * (p["carry_rotating_mass"] / p["carry_pitch"] + p["belt_mass"] + p["material"])
+    return_per_m = f * g * (p["return_rotating_mass"] / p["return_pitch"] + p["belt_mass"])
+    return {
+        "F_U": res.total, "F_H": res.main, "F_bA": res.loading, "T1": t.tight, "T2": t.slack,
+        "T1_probe": t.tight - carry_per_m * PROBE, "T2_probe": t.slack + return_per_m * PROBE,
+    }
+
+
+def start(shape: str, ramp: float, prestart: float, length: float, settle: float) -> dict[str, Any]:
+    """One start from rest: build, stabilise, run the curve and ``settle`` s more."""
+    curve = beltrs.StartCurve(shape=shape, speed=GUO_WANG["speed"], ramp=ramp, prestart=prestart)
+    scene = guo_wang_conveyor(curve, length=length)
+    t0 = time.perf_counter()
+    sim = beltrs.Simulation(scene)
+    rep = sim.stabilise(**STABILISE)
+    t1 = time.perf_counter()
+    r = GUO_WANG["drum_radius"]
+    probes = [(length - PROBE, r), (length - PROBE, -r)]
+    duration = prestart + ramp + settle
+    data = probe_run(sim, probes, duration, INTERVAL)
+    t2 = time.perf_counter()
+    tt, tension = data["time"], data["tension"]
+    k = int(np.argmax(tension[:, 0]))
+    after = tt >= prestart + ramp
+    steady = tt >= tt[-1] - STEADY_WINDOW
+    head = scene.pulley_index("head")
+    drum_speed = -data["pulley_speed"][:, head] * r  # belt speed at the drum surface, m/s
+    return {
+        "shape": shape, "ramp": ramp, "prestart": prestart, "nodes": sim.nodes, "dt": sim.dt,
+        "stabilise_steps": rep["steps"], "stabilise_wall": t1 - t0, "run_wall": t2 - t1,
+        "time": tt, "T1": tension[:, 0], "T2": tension[:, 1], "speed": drum_speed,
+        "takeup": data["takeup_travel"][:, scene.pulley_index("tail")],
+        "peak": float(tension[k, 0]), "peak_time": float(tt[k]),
+        "T2_min": float(tension[:, 1].min()),
+        "swing_after": float(np.ptp(tension[after, 0])) if after.any() else float("nan"),
+        "T1_steady": float(tension[steady, 0].mean()), "T2_steady": float(tension[steady, 1].mean()),
+        "takeup_max": float(np.max(np.abs(data["takeup_travel"][:, scene.pulley_index("tail")]))),
+        "peak_acceleration": float(max(abs(curve_acceleration(curve, t)) for t in np.linspace(0, duration, 2001))),
+    }
+
+
+def curve_acceleration(curve: "beltrs.StartCurve", t: float) -> float:
+    return float(curve.acceleration_at(t))
+
+
+def plot(runs: list[dict[str, Any]], path: pathlib.Path, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.0, 6.0), sharex=True)
+    for run in runs:
+        label = f"{run['shape']}, {run['ramp']:g} s" + (f" + {run['prestart']:g} s pre-start" if run["prestart"] else "")
+        a1.plot(run["time"], run["T1"] / 1e3, lw=1, label=label)
+        a2.plot(run["time"], run["speed"], lw=1)
+    a1.set_ylabel("tight-side tension 10 m before head, kN")
+    a2.set_ylabel("drum surface speed, m/s")
+    a2.set_xlabel("time, s")
+    a1.set_title(title, fontsize=10)
+    a1.legend(fontsize=7)
+    for a in (a1, a2):
+        a.grid(True, alpha=0.3)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="200 m conveyor, three runs (smoke test)")
+    ap.add_argument("--out", default=str(ROOT / "docs"))
+    args = ap.parse_args(argv)
+    out = pathlib.Path(args.out)
+    length = 200.0 if args.quick else GUO_WANG["length"]
+    settle = 5.0 if args.quick else SETTLE
+    started = time.perf_counter()
+    plan = ([("harrison", 10.0, 0.0), ("linear", 10.0, 0.0), ("harrison", 10.0, 3.0)] if args.quick else
+            [(s, 10.0, 0.0) for s in SHAPES] + [(s, 30.0, 0.0) for s in SHAPES] + [(s, 10.0, 3.0) for s in SHAPES])
+    runs = []
+    for shape, ramp, pre in plan:
+        run = start(shape, ramp, pre, length, settle)
+        runs.append(run)
+        print(f"{shape:9s} ramp {ramp:4.0f} s pre-start {pre:3.0f} s: peak T1 {run['peak'] / 1e3:6.1f} kN at "
+              f"{run['peak_time']:5.2f} s, min T2 {run['T2_min'] / 1e3:5.1f} kN, swing after ramp "
+              f"{run['swing_after'] / 1e3:5.1f} kN; {run['nodes']} nodes, dt {run['dt'] * 1e6:.1f} us, "
+              f"stabilise {run['stabilise_wall']:.1f} s, run {run['run_wall']:.1f} s", flush=True)
+    din = din_reference(length, GUO_WANG["drum_radius"])
+    img = out / "img"
+    plot([r for r in runs if r["ramp"] == 10.0 and not r["prestart"]], img / "case_g_10s.png",
+         f"Case G ({length:g} m): starts in 10 s")
+    if not args.quick:
+        plot([r for r in runs if r["ramp"] == 30.0], img / "case_g_30s.png", f"Case G ({length:g} m): starts in 30 s")
+        plot([r for r in runs if r["prestart"]], img / "case_g_prestart.png",
+             f"Case G ({length:g} m): 3 s pre-start + 10 s")
+    write_page(out / "case-g.md", runs, din, length, args.quick, time.perf_counter() - started)
+    print(f"wrote {out / 'case-g.md'} in {time.perf_counter() - started:.0f} s")
+
+
+def write_page(path: pathlib.Path, runs: list[dict[str, Any]], din: dict[str, float], length: float,
+               quick: bool, wall: float) -> None:
+    L: list[str] = []
+    add = L.append
+    add("# Case G: starting a 972 m conveyor")
+    add("")
+    add(f"Generated by `python benches/case_g.py`{' --quick (200 m conveyor)' if quick else ''} (do not edit "
+        f"by hand). beltrs {beltrs.__version__}, Python {platform.python_version()}, one thread; the study "
+        f"took {wall / 60:.1f} min. Scene and assumptions: `beltrs.scenes.guo_wang_conveyor` "
+        "(reference-cases.md, case G; Guo & Wang 2020, Table 1). Tensions are read 10 m before the head "
+        "pulley on the carry strand (T1, tight side) and 10 m after it on the return strand (T2), "
+        "every 20 ms.")
+    add("")
+    add("| curve | ramp, s | pre-start, s | peak T1, kN | at, s | min T2, kN | T1 swing after ramp, kN "
+        "| peak accel. of curve, m/s² | takeup travel, m | wall, s |")
+    add("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in runs:
+        add(f"| {r['shape']} | {r['ramp']:g} | {r['prestart']:g} | {r['peak'] / 1e3:.1f} | {r['peak_time']:.2f} "
+            f"| {r['T2_min'] / 1e3:.1f} | {r['swing_after'] / 1e3:.1f} | {r['peak_acceleration']:.3f} "
+            f"| {r['takeup_max']:.3f} | {r['stabilise_wall'] + r['run_wall']:.0f} |")
+    add("")
+    base = runs[0]
+    add("## Steady running against DIN 22101")
+    add("")
+    add(f"Averages over the last {STEADY_WINDOW:g} s of the first run ({base['shape']}, {base['ramp']:g} s, then "
+        f"{base['time'][-1] - base['ramp'] - base['prestart']:.0f} s at full speed) against "
+        "`beltrs.din22101` with the same resistances (main resistance f = 0.02 on belt, material and "
+        "idler rotating masses; material acceleration at loading; no secondary resistances).")
+    add("")
+    d1, d2 = base["T1_steady"] - din["T1_probe"], base["T2_steady"] - din["T2_probe"]
+    diff_sim = base["T1_steady"] - base["T2_steady"]
+    diff_din = din["T1_probe"] - din["T2_probe"]
+    add("| quantity | engine | DIN 22101 | difference |")
+    add("|---|---:|---:|---:|")
+    add(f"| T1 at probe, kN | {base['T1_steady'] / 1e3:.2f} | {din['T1_probe'] / 1e3:.2f} | {d1 / din['T1_probe'] * 100:+.1f} % |")
+    add(f"| T2 at probe, kN | {base['T2_steady'] / 1e3:.2f} | {din['T2_probe'] / 1e3:.2f} | {d2 / din['T2_probe'] * 100:+.1f} % |")
+    add(f"| T1 − T2 at probes, kN | {diff_sim / 1e3:.2f} | {diff_din / 1e3:.2f} | "
+        f"{(diff_sim - diff_din) / diff_din * 100:+.1f} % |")
+    add("")
+    add(f"DIN totals for this conveyor: F_U = {din['F_U'] / 1e3:.2f} kN (F_H {din['F_H'] / 1e3:.2f} kN, "
+        f"material acceleration {din['F_bA'] / 1e3:.2f} kN); T1 = {din['T1'] / 1e3:.2f} kN, "
+        f"T2 = {din['T2'] / 1e3:.2f} kN at the drum.")
+    add("")
+    add("![10 s starts](img/case_g_10s.png)")
+    add("")
+    if not quick:
+        add("![30 s starts](img/case_g_30s.png)")
+        add("")
+        add("![pre-start](img/case_g_prestart.png)")
+        add("")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(L) + "\n", encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()
