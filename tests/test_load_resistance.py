@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import Idler, Load, Scene, SceneError
+from beltrs import Load, Scene, SceneError
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benches"))
 from bench_scenes import conveyor  # noqa: E402
@@ -138,6 +138,7 @@ def test_idler_weights_and_din_main_resistance():
     assert measured == pytest.approx(din, rel=0.02)
     n_carry = res.idler_force[w][:, carry].sum(axis=1).mean()
     n_ret = res.idler_force[w][:, ret].sum(axis=1).mean()
-    print(f"carry idlers {n_carry:.0f} N vs {(M_BELT + M_LOAD) * G * lc:.0f} N, return {n_ret:.0f} vs {M_BELT * G * lr:.0f}")
+    print(f"carry idlers {n_carry:.0f} N vs {(M_BELT + M_LOAD) * G * lc:.0f} N")
+    print(f"return idlers {n_ret:.0f} N vs {M_BELT * G * lr:.0f} N")
     assert n_carry == pytest.approx((M_BELT + M_LOAD) * G * lc, rel=0.01)
     assert n_ret == pytest.approx(M_BELT * G * lr, rel=0.01)
