@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import beltrs
-from beltrs import Belt, Brake, Drive, Friction, Idler, Pulley, Recording, Scene, SceneError, Solver, Takeup
+from beltrs import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver, Takeup
 from beltrs import scene_file
 from beltrs.scene import unknown_key_message
 from beltrs.scenes import hustrulid_loop
@@ -346,9 +346,9 @@ def test_the_complete_example_in_the_docs():
     keys = {"gravity"}
     for name in ("belt", "solver", "recording"):
         assert f"### `[{name}]`" in doc
-    for name in ("pulleys", "idlers"):
+    for name in ("pulleys", "idlers", "loads"):
         assert f"### `[[{name}]]`" in doc
-    for obj in (Belt(), Pulley(), Friction(), Takeup(), Drive(), Brake(), Idler(), Solver(), Recording()):
+    for obj in (Belt(), Pulley(), Friction(), Takeup(), Drive(), Brake(), Idler(), Load(), Solver(), Recording()):
         keys |= {f.name for f in dataclasses.fields(obj)}
     assert keys <= documented
 
@@ -391,6 +391,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`drive`": (Drive, None),
         "`brake`": (Brake, None),
         "`[[idlers]]`": (Idler, None),
+        "`[[loads]]`": (Load, None),
         "`[solver]`": (Solver, None),
         "`[recording]`": (Recording, None),
     }

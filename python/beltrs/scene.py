@@ -34,6 +34,7 @@ __all__ = [
     "Drive",
     "Friction",
     "Idler",
+    "Load",
     "Pulley",
     "Recording",
     "Scene",
@@ -241,6 +242,14 @@ class Idler:
         contact_stiffness: N/m. Default 1e8.
         contact_damping: N*s/m. Default 0.
         friction: belt friction. Default None (the roll never turns).
+        resistance: running resistance, DIN 22101's artificial friction coefficient f,
+            dimensionless, >= 0. The belt meets a tangential force at the contact point
+            opposing its motion over the ground, up to f * (N + rotating_mass * g), N the
+            contact normal force; below that limit it holds the belt (stick). Summed over a
+            strand on idlers this is DIN's main resistance F_H. 0 on every idler compiles no
+            ``running_resistance`` stage. Default 0. See docs/loads.md.
+        rotating_mass: rotating mass of the roll, kg, >= 0; its weight adds to the bearing
+            load in the resistance limit (the roll's inertia is ``inertia``). Default 0.
     """
 
     center: tuple[float, float] = (0.0, 0.0)
@@ -249,6 +258,8 @@ class Idler:
     contact_stiffness: float = 1e8
     contact_damping: float = 0.0
     friction: Optional[Friction] = None
+    resistance: float = 0.0
+    rotating_mass: float = 0.0
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -261,6 +272,44 @@ class Idler:
             "contact_stiffness": self.contact_stiffness,
             "contact_damping": self.contact_damping,
             "friction": None if self.friction is None else self.friction.to_dict(),
+            "resistance": self.resistance,
+            "rotating_mass": self.rotating_mass,
+        }
+
+
+@dataclass
+class Load:
+    """Bulk material on the belt between a loading and a discharge point (docs/loads.md).
+
+    The material moves with the belt: each step the belt points nearest ``start`` and
+    ``end`` are tracked, and each node carries the material on its tributary length inside
+    the zone between them (node masses change during a run: ``Simulation.node_masses()``).
+    Material enters at rest along the belt (the belt pays its momentum, DIN 22101's
+    acceleration resistance Q*v) and leaves with the belt's velocity.
+
+    Attributes:
+        mass_per_length: material per metre of unstretched belt, kg/m, finite, >= 0 (a
+            volumetric feeder: the same at any belt speed). Default 0.
+        start: loading point (x, y), m, within 1 m of the initial belt path (e.g. under the
+            tail chute on the carry strand). Default (0, 0).
+        end: discharge point (x, y), m, within 1 m of the belt path (e.g. the head pulley's
+            top tangent point). The loaded zone is the run of belt between the two points
+            that does not wrap a pulley (by more than 10 degrees); if both runs or neither
+            do, the scene is refused as ambiguous.
+    """
+
+    mass_per_length: float = 0.0
+    start: tuple[float, float] = (0.0, 0.0)
+    end: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "mass_per_length": self.mass_per_length,
+            "start": [float(c) for c in self.start],
+            "end": [float(c) for c in self.end],
         }
 
 
@@ -396,6 +445,7 @@ class Scene:
         belt: belt properties.
         pulleys: pulleys in belt order (the loop closes from the last to the first).
         idlers: idlers, any order.
+        loads: bulk material loads (:class:`Load`), any order. Default none.
         gravity: m/s^2, acting in -y; 0 compiles no gravity stage. Default 9.81.
         solver: time stepping.
         recording: how ``beltrs run`` runs the scene and what it records.
@@ -404,6 +454,7 @@ class Scene:
     belt: Belt = field(default_factory=Belt)
     pulleys: list[Pulley] = field(default_factory=list)
     idlers: list[Idler] = field(default_factory=list)
+    loads: list[Load] = field(default_factory=list)
     gravity: float = 9.81
     solver: Solver = field(default_factory=Solver)
     recording: Recording = field(default_factory=Recording)
@@ -417,6 +468,7 @@ class Scene:
             "belt": self.belt.to_dict(),
             "pulleys": [p.to_dict() for p in self.pulleys],
             "idlers": [d.to_dict() for d in self.idlers],
+            "loads": [ld.to_dict() for ld in self.loads],
             "gravity": self.gravity,
             "solver": self.solver.to_dict(),
             "recording": self.recording.to_dict(),

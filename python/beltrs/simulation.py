@@ -110,10 +110,24 @@ class Simulation:
 
     @property
     def node_mass(self) -> np.ndarray:
-        """Node masses, kg, shape ``[E]``."""
+        """Node masses of the belt alone, kg, shape ``[E]`` (with loads, the current masses
+        are :meth:`node_masses`)."""
         return np.asarray(self._core.node_mass)
 
     # --- state -------------------------------------------------------------------------
+    def node_masses(self) -> np.ndarray:
+        """Node masses now, kg, shape ``[E]``: the belt's (:attr:`node_mass`) plus the
+        material of the scene's loads on each node's tributary length, which changes as the
+        belt moves (docs/loads.md)."""
+        return np.asarray(self._core.node_masses())
+
+    def load_zones(self) -> np.ndarray:
+        """Each load's zone now, shape ``[loads, 3]``: the material coordinates (m of
+        unstretched belt from node 0) of the belt points at the loading and at the discharge
+        point, and the zone's length between them, m (its material is
+        ``mass_per_length`` times that)."""
+        return np.asarray(self._core.load_zones())
+
     def state(self) -> dict[str, Any]:
         """Current state as NumPy arrays (positions m, half-step velocities m/s, ...)."""
         return dict(self._core.state())

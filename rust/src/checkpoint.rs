@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 1)
+//! # Format (version 2; version 1 is still read)
 //!
 //! All integers are little-endian; every `f64` is stored as its raw IEEE-754 bits
 //! (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (1) |
+//! | 8..12 | format version, `u32` (2) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -23,6 +23,13 @@
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! and the drive work. Strings and arrays are a `u64` length followed by the items.
 //!
+//! Version 2 adds, to each idler, its running resistance and rotating mass (after its
+//! friction); to the scene, the loads (after the idlers: count, then mass per length,
+//! start x, y, end x, y of each); and to the state, after the drive work, the node masses
+//! (belt and material) and each load's zone edges (start element, end element, start and
+//! end material coordinates). A version-1 file reads as a scene without resistance or
+//! loads, whose node masses are the belt's.
+//!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
 //!
@@ -31,10 +38,11 @@
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
 use crate::error::{BeltError, BeltResult};
+use crate::loads::LoadEdges;
 use crate::model::Model;
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, PulleySpec, Scene,
-    SolverParams, Table, TakeupSpec, Wrap,
+    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, LoadSpec, PulleySpec,
+    Scene, SolverParams, Table, TakeupSpec, Wrap,
 };
 use crate::simulation::Simulation;
 use crate::state::{ContactWindow, State};
@@ -44,8 +52,10 @@ use std::path::Path;
 
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
-/// Version of the format written by this build (the only one it reads).
-pub const FORMAT_VERSION: u32 = 1;
+/// Version of the format written by this build.
+pub const FORMAT_VERSION: u32 = 2;
+/// Oldest version this build reads.
+pub const OLDEST_READ_VERSION: u32 = 1;
 const HEADER_BYTES: usize = 24;
 const CHECKSUM_BYTES: usize = 4;
 
@@ -117,9 +127,9 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         ));
     }
     let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
-    if version != FORMAT_VERSION {
+    if !(OLDEST_READ_VERSION..=FORMAT_VERSION).contains(&version) {
         return Err(format!(
-            "format version {version}; this build of beltrs reads version {FORMAT_VERSION} only"
+            "format version {version}; this build of beltrs reads versions {OLDEST_READ_VERSION} to {FORMAT_VERSION}"
         ));
     }
     let payload_len = u64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
@@ -147,12 +157,13 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
     let mut r = Reader {
         bytes: &bytes[HEADER_BYTES..end],
         pos: 0,
+        version,
     };
     let _writer_version = r.str("engine version")?;
     let scene = read_scene(&mut r)?;
     let nodes = r.u64("node count")?;
     let dt = r.f64("time step")?;
-    let state = read_state(&mut r)?;
+    let mut state = read_state(&mut r)?;
     if r.pos != r.bytes.len() {
         return Err(format!(
             "corrupt: {} unread bytes after the state",
@@ -166,6 +177,10 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
             "its scene compiles to {} nodes and Δt = {:e} s with this build, but was saved with {} nodes and Δt = {:e} s; an exact resume is impossible",
             model.nodes, model.dt, nodes, dt
         ));
+    }
+    if version < 2 {
+        // No loads existed: the node masses are the belt's.
+        state.node_mass = model.mass.clone();
     }
     check_state_fits(&state, &model)?;
     Ok(Simulation::from_parts(model, state))
@@ -183,6 +198,8 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler speeds", s.idler_omega.len(), q),
         ("pulley contact windows", s.pulley_window.len(), p),
         ("idler elements", s.idler_element.len(), q),
+        ("node masses", s.node_mass.len(), n),
+        ("load zones", s.load_edges.len(), m.loads.len()),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -201,6 +218,21 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         if e >= n {
             return Err(format!("corrupt: idler {k} tracks element {e} of {n}"));
         }
+    }
+    for (k, e) in s.load_edges.iter().enumerate() {
+        if e.start_element >= n || e.end_element >= n {
+            return Err(format!(
+                "corrupt: load {k} tracks elements {} and {} of {n}",
+                e.start_element, e.end_element
+            ));
+        }
+    }
+    if let Some(i) = s
+        .node_mass
+        .iter()
+        .position(|m| !(m.is_finite() && *m > 0.0))
+    {
+        return Err(format!("corrupt: node {i} has mass {} kg", s.node_mass[i]));
     }
     Ok(())
 }
@@ -316,6 +348,18 @@ pub fn scene_difference(saved: &Scene, given: &Scene) -> Option<String> {
             return Some(show(&format!("idlers[{i}]"), a, b));
         }
     }
+    if saved.loads.len() != given.loads.len() {
+        return Some(format!(
+            "loads: {} in the checkpoint, {} given",
+            saved.loads.len(),
+            given.loads.len()
+        ));
+    }
+    for (i, (a, b)) in saved.loads.iter().zip(&given.loads).enumerate() {
+        if a != b {
+            return Some(show(&format!("loads[{i}]"), a, b));
+        }
+    }
     None
 }
 
@@ -383,6 +427,8 @@ impl Writer {
 struct Reader<'a> {
     bytes: &'a [u8],
     pos: usize,
+    /// Format version of the file being read.
+    version: u32,
 }
 
 type Decoded<T> = Result<T, String>;
@@ -544,6 +590,16 @@ fn write_scene(w: &mut Writer, s: &Scene) {
         w.f64(d.contact_stiffness);
         w.f64(d.contact_damping);
         w.friction(&d.friction);
+        w.f64(d.resistance);
+        w.f64(d.rotating_mass);
+    }
+    w.u64(s.loads.len() as u64);
+    for l in &s.loads {
+        w.f64(l.mass_per_length);
+        w.f64(l.start[0]);
+        w.f64(l.start[1]);
+        w.f64(l.end[0]);
+        w.f64(l.end[1]);
     }
     w.f64(s.gravity);
     w.opt_f64(s.solver.time_step);
@@ -635,14 +691,32 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
     let mut idlers = Vec::with_capacity(n_idlers);
     for i in 0..n_idlers {
         let f = format!("idlers[{i}]");
-        idlers.push(IdlerSpec {
+        let mut spec = IdlerSpec {
             center: [r.f64(&f)?, r.f64(&f)?],
             radius: r.f64(&f)?,
             inertia: r.f64(&f)?,
             contact_stiffness: r.f64(&f)?,
             contact_damping: r.f64(&f)?,
             friction: r.friction(&f)?,
-        });
+            ..IdlerSpec::default()
+        };
+        if r.version >= 2 {
+            spec.resistance = r.f64(&f)?;
+            spec.rotating_mass = r.f64(&f)?;
+        }
+        idlers.push(spec);
+    }
+    let mut loads = Vec::new();
+    if r.version >= 2 {
+        let n_loads = r.len("loads", 40)?;
+        for i in 0..n_loads {
+            let f = format!("loads[{i}]");
+            loads.push(LoadSpec {
+                mass_per_length: r.f64(&f)?,
+                start: [r.f64(&f)?, r.f64(&f)?],
+                end: [r.f64(&f)?, r.f64(&f)?],
+            });
+        }
     }
     let gravity = r.f64("gravity")?;
     let solver = SolverParams {
@@ -653,6 +727,7 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
         belt,
         pulleys,
         idlers,
+        loads,
         gravity,
         solver,
     })
@@ -678,6 +753,14 @@ fn write_state(w: &mut Writer, s: &State) {
         w.u64(e as u64);
     }
     w.f64(s.drive_work);
+    w.f64s(&s.node_mass);
+    w.u64(s.load_edges.len() as u64);
+    for e in &s.load_edges {
+        w.u64(e.start_element as u64);
+        w.u64(e.end_element as u64);
+        w.f64(e.start);
+        w.f64(e.end);
+    }
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -704,6 +787,24 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         .map(|_| r.usize("idler element"))
         .collect::<Decoded<Vec<_>>>()?;
     let drive_work = r.f64("drive work")?;
+    let (node_mass, load_edges) = if r.version >= 2 {
+        let node_mass = r.f64s("node masses")?;
+        let n = r.len("load zones", 32)?;
+        let edges = (0..n)
+            .map(|_| {
+                Ok(LoadEdges {
+                    start_element: r.usize("load zone")?,
+                    end_element: r.usize("load zone")?,
+                    start: r.f64("load zone")?,
+                    end: r.f64("load zone")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?;
+        (node_mass, edges)
+    } else {
+        // Filled in from the model by `decode`.
+        (Vec::new(), Vec::new())
+    };
     Ok(State {
         time,
         step,
@@ -717,6 +818,8 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         pulley_window,
         idler_element,
         drive_work,
+        node_mass,
+        load_edges,
     })
 }
 

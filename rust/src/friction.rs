@@ -233,21 +233,66 @@ pub fn idler_stick_friction(
     dt: f64,
     force: &mut [V2],
 ) -> (f64, bool) {
+    point_stick_force(
+        contact,
+        idler.radius * idler.omega,
+        idler.radius * idler.radius / idler.inertia,
+        v,
+        mass,
+        dt,
+        force,
+        idler.mu_static * contact.normal_force,
+        idler.mu_kinetic * contact.normal_force,
+    )
+}
+
+/// DIN 22101 running resistance at one idler contact point: the stick force of
+/// [`idler_stick_friction`] against the ground (a body that neither moves nor turns, R²/I =
+/// 0), clipped to `limit` = f·(N + m_R·g) (static and kinetic alike). It stops the contact
+/// point's tangential motion within the step if it can (a belt at rest under a smaller
+/// net force stays at rest), and otherwise opposes it with the full limit. Returns
+/// (f, sliding): the belt receives −f t.
+pub fn running_resistance(
+    contact: &IdlerContact,
+    limit: f64,
+    v: &[V2],
+    mass: &[f64],
+    dt: f64,
+    force: &mut [V2],
+) -> (f64, bool) {
+    point_stick_force(contact, 0.0, 0.0, v, mass, dt, force, limit, limit)
+}
+
+/// The shared kernel of [`idler_stick_friction`] and [`running_resistance`]: the tangential
+/// force f that brings the contact point of `contact` to the tangential speed
+/// `surface_speed` of the body at the end of the step, for a body whose surface yields to it
+/// with the compliance R²/I (`body_compliance`, 0 for the ground); applied if |f| ≤
+/// `static_limit`, else `kinetic_limit` in its direction. Returns (f, slipping).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn point_stick_force(
+    contact: &IdlerContact,
+    surface_speed: f64,
+    body_compliance: f64,
+    v: &[V2],
+    mass: &[f64],
+    dt: f64,
+    force: &mut [V2],
+    static_limit: f64,
+    kinetic_limit: f64,
+) -> (f64, bool) {
     let n = v.len();
     let (i, j) = (contact.element, (contact.element + 1) % n);
     let g = contact.gamma;
     let t = perp(contact.normal);
     let vc = v[i] * (1.0 - g) + v[j] * g;
-    let vn = t.dot(&vc) - idler.radius * idler.omega;
+    let vn = t.dot(&vc) - surface_speed;
     let num = vn / dt + (1.0 - g) * t.dot(&force[i]) / mass[i] + g * t.dot(&force[j]) / mass[j];
-    let den = (1.0 - g) * (1.0 - g) / mass[i]
-        + g * g / mass[j]
-        + idler.radius * idler.radius / idler.inertia;
+    let den = (1.0 - g) * (1.0 - g) / mass[i] + g * g / mass[j] + body_compliance;
     let mut f = num / den;
-    let limit = idler.mu_static * contact.normal_force;
-    let slipping = f.abs() > limit;
+    let slipping = f.abs() > static_limit;
     if slipping {
-        f = idler.mu_kinetic * contact.normal_force * f.signum();
+        f = kinetic_limit * f.signum();
     }
     force[i] -= t * (f * (1.0 - g));
     force[j] -= t * (f * g);

@@ -6,6 +6,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::geometry::BeltPath;
+use crate::loads::LoadModel;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
 
@@ -13,6 +14,9 @@ use nalgebra::Vector2;
 /// (a disabled effect is not in the list, so it costs nothing).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Stage {
+    /// Bulk material on the belt: tracks each load's zone and updates the masses of the
+    /// nodes at its edges (`crate::loads`). Runs first, so every later stage sees them.
+    Loads,
     /// Node weights m·g (thesis eq. 4.49).
     Gravity,
     /// Elastic axial springs (thesis eq. 4.40).
@@ -25,6 +29,9 @@ pub enum Stage {
     PulleyContact,
     /// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102).
     IdlerContact,
+    /// DIN 22101 running resistance at the idlers: a stick-capable tangential force up to
+    /// f·(N + m_R·g) opposing the belt's motion over the ground.
+    RunningResistance,
     /// Drive torques T(t, ω) (thesis eq. 4.66).
     Drives,
     /// Stick-force friction between belt and pulleys (thesis eq. 4.76–4.94, figure 4.9).
@@ -41,12 +48,14 @@ impl Stage {
     /// Stable snake_case name, as shown in Python (`model.stages`).
     pub fn name(self) -> &'static str {
         match self {
+            Stage::Loads => "loads",
             Stage::Gravity => "gravity",
             Stage::Axial => "axial",
             Stage::AxialDamped => "axial_damped",
             Stage::Bending => "bending",
             Stage::PulleyContact => "pulley_contact",
             Stage::IdlerContact => "idler_contact",
+            Stage::RunningResistance => "running_resistance",
             Stage::Drives => "drives",
             Stage::PulleyFriction => "pulley_friction",
             Stage::IdlerFriction => "idler_friction",
@@ -113,6 +122,10 @@ pub struct IdlerModel {
     pub contact_damping: f64,
     /// Friction model.
     pub friction: FrictionModel,
+    /// DIN 22101 running-resistance coefficient f, dimensionless.
+    pub resistance: f64,
+    /// Rotating mass of the roll, kg (its weight adds to the bearing load).
+    pub rotating_mass: f64,
 }
 
 /// The read-only compiled model.
@@ -122,7 +135,8 @@ pub struct Model {
     pub scene: Scene,
     /// Number of nodes (= number of elements; the belt is a closed loop).
     pub nodes: usize,
-    /// Node masses, kg (thesis eq. 4.4).
+    /// Node masses of the belt alone, kg (thesis eq. 4.4). With loads the masses change
+    /// during a run: the current ones (belt + material) are `State::node_mass`.
     pub mass: Vec<f64>,
     /// 1 / node mass, 1/kg.
     pub inv_mass: Vec<f64>,
@@ -142,6 +156,8 @@ pub struct Model {
     pub pulleys: Vec<PulleyModel>,
     /// Idlers.
     pub idlers: Vec<IdlerModel>,
+    /// Bulk material loads.
+    pub loads: Vec<LoadModel>,
     /// The initial path.
     pub path: BeltPath,
     /// Initial node positions, m.
@@ -305,10 +321,13 @@ impl Model {
                 contact_stiffness: d.contact_stiffness,
                 contact_damping: d.contact_damping,
                 friction: d.friction,
+                resistance: d.resistance,
+                rotating_mass: d.rotating_mass,
             })
             .collect();
+        let loads = crate::loads::compile(&scene.loads, &path, l0)?;
 
-        let stages = Self::select_stages(scene, &pulleys, &idlers);
+        let stages = Self::select_stages(scene, &pulleys, &idlers, &loads);
         let mut model = Model {
             scene: scene.clone(),
             nodes: n,
@@ -322,6 +341,7 @@ impl Model {
             gravity: scene.gravity,
             pulleys,
             idlers,
+            loads,
             path,
             initial_positions,
             stages,
@@ -343,8 +363,16 @@ impl Model {
         Ok(model)
     }
 
-    fn select_stages(scene: &Scene, pulleys: &[PulleyModel], idlers: &[IdlerModel]) -> Vec<Stage> {
+    fn select_stages(
+        scene: &Scene,
+        pulleys: &[PulleyModel],
+        idlers: &[IdlerModel],
+        loads: &[LoadModel],
+    ) -> Vec<Stage> {
         let mut stages = Vec::new();
+        if !loads.is_empty() {
+            stages.push(Stage::Loads);
+        }
         if scene.gravity > 0.0 {
             stages.push(Stage::Gravity);
         }
@@ -361,6 +389,9 @@ impl Model {
         }
         if !idlers.is_empty() {
             stages.push(Stage::IdlerContact);
+        }
+        if idlers.iter().any(|d| d.resistance > 0.0) {
+            stages.push(Stage::RunningResistance);
         }
         if pulleys.iter().any(|p| p.drive.is_some()) {
             stages.push(Stage::Drives);
@@ -426,6 +457,8 @@ impl Model {
             let k_total = k_ax + k_bend + k_contact.0;
             let c_total = c_ax + k_contact.1;
             self.node_stiffness_bound[i] = k_total;
+            // The belt-only mass: loads only add mass to a node, which lowers its ω, so the
+            // limit found here holds whatever material the node carries during a run.
             let m = self.mass[i];
             let omega = (k_total / m).sqrt();
             let zeta = c_total / (2.0 * m * omega);
@@ -482,5 +515,14 @@ impl Model {
     /// Total belt mass, kg.
     pub fn belt_mass(&self) -> f64 {
         self.mass.iter().sum()
+    }
+
+    /// The uniform discretisation the loads work on (every element has the same rest
+    /// length by construction).
+    pub fn load_belt(&self) -> crate::loads::Belt {
+        crate::loads::Belt {
+            nodes: self.nodes,
+            l: self.rest_length[0],
+        }
     }
 }

@@ -351,6 +351,16 @@ pub struct IdlerSpec {
     pub contact_damping: f64,
     /// Belt–idler friction. Default frictionless (the roll then never turns).
     pub friction: FrictionModel,
+    /// Running resistance: DIN 22101's artificial friction coefficient f, dimensionless,
+    /// ≥ 0. The belt meets a tangential force at the contact point that opposes its motion
+    /// relative to the ground, up to f·(N + `rotating_mass`·g), N the contact normal force
+    /// (stick-capable: it holds a belt at rest below that limit). Zero on every idler
+    /// compiles no running-resistance stage. Default 0.
+    pub resistance: f64,
+    /// Rotating mass of the roll, kg, ≥ 0: its weight adds to the load on the bearings in
+    /// the running-resistance limit f·(N + m_R·g). (The roll's inertia is `inertia`.)
+    /// Default 0.
+    pub rotating_mass: f64,
 }
 
 impl Default for IdlerSpec {
@@ -362,9 +372,43 @@ impl Default for IdlerSpec {
             contact_stiffness: 1e8,
             contact_damping: 0.0,
             friction: FrictionModel::None,
+            resistance: 0.0,
+            rotating_mass: 0.0,
         }
     }
 }
+
+/// Bulk material lying on the belt between a loading point and a discharge point
+/// (`docs/loads.md`). The material moves with the belt: each step the belt material points
+/// nearest `start` and `end` are found, and every node carries the material on its
+/// tributary length inside the zone between them, so node masses change during a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadSpec {
+    /// Material per metre of unstretched belt, kg/m, finite, ≥ 0 (a volumetric feeder: the
+    /// same whatever the belt speed). Default 0.
+    pub mass_per_length: f64,
+    /// Loading point (x, y), m: where material enters (e.g. under the tail chute). Within
+    /// [`LOAD_POINT_TOLERANCE`] of the initial belt path. Default (0, 0).
+    pub start: [f64; 2],
+    /// Discharge point (x, y), m: where material leaves (e.g. the head pulley's top
+    /// tangent point). Within [`LOAD_POINT_TOLERANCE`] of the initial belt path. The loaded
+    /// zone is the run of belt between the two points that does not wrap a pulley.
+    /// Default (0, 0).
+    pub end: [f64; 2],
+}
+
+impl Default for LoadSpec {
+    fn default() -> Self {
+        LoadSpec {
+            mass_per_length: 0.0,
+            start: [0.0, 0.0],
+            end: [0.0, 0.0],
+        }
+    }
+}
+
+/// Farthest a load's `start` or `end` may lie from the initial belt path, m.
+pub const LOAD_POINT_TOLERANCE: f64 = 1.0;
 
 /// Time-stepping settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -493,6 +537,8 @@ pub struct Scene {
     pub pulleys: Vec<PulleySpec>,
     /// Idlers (in any order).
     pub idlers: Vec<IdlerSpec>,
+    /// Bulk material loads on the belt (any order). Default none.
+    pub loads: Vec<LoadSpec>,
     /// Gravitational acceleration, m/s², acting in −y. Zero disables the gravity stage.
     /// Default 9.81.
     pub gravity: f64,
@@ -506,6 +552,7 @@ impl Default for Scene {
             belt: BeltParams::default(),
             pulleys: Vec::new(),
             idlers: Vec::new(),
+            loads: Vec::new(),
             gravity: 9.81,
             solver: SolverParams::default(),
         }
@@ -707,6 +754,16 @@ impl Scene {
             check_positive(&format!("{f}.contact_stiffness"), d.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), d.contact_damping)?;
             check_friction(&format!("{f}.friction"), &d.friction)?;
+            check_non_negative(&format!("{f}.resistance"), d.resistance)?;
+            check_non_negative(&format!("{f}.rotating_mass"), d.rotating_mass)?;
+        }
+        for (i, l) in self.loads.iter().enumerate() {
+            let f = format!("loads[{i}]");
+            check_non_negative(&format!("{f}.mass_per_length"), l.mass_per_length)?;
+            for (key, p) in [("start", l.start), ("end", l.end)] {
+                check_finite(&format!("{f}.{key}[0]"), p[0])?;
+                check_finite(&format!("{f}.{key}[1]"), p[1])?;
+            }
         }
         // Bodies must not overlap (thesis §4.3: pulleys and idlers never touch each other).
         let circles: Vec<(String, [f64; 2], f64)> = self

@@ -67,6 +67,9 @@ pub struct Scratch {
     pub idler_contacts: Vec<IdlerContact>,
     /// Friction torque on each idler, N·m.
     pub idler_torque: Vec<f64>,
+    /// Running-resistance force of each idler on the belt, N, along the contact tangent
+    /// (the belt receives −f·t; 0 when the idler has none or is not touched).
+    pub idler_resistance: Vec<f64>,
 }
 
 impl Scratch {
@@ -96,6 +99,7 @@ impl Scratch {
             brake_holds: vec![false; p],
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
+            idler_resistance: vec![0.0; q],
         }
     }
 }
@@ -109,6 +113,10 @@ struct Inertia {
     /// integration then streams one array less.
     same_inv_mass: Option<f64>,
     takeup_mass: Vec<f64>,
+    /// True for the physical masses (dynamics): the loads stage then keeps `mass` and
+    /// `inv_mass` equal to the state's node masses. False for the relaxation's fictitious
+    /// masses.
+    physical: bool,
 }
 
 /// The common value if every element of `values` is the same, bit for bit.
@@ -121,16 +129,24 @@ fn all_same(values: &[f64]) -> Option<f64> {
 }
 
 impl Inertia {
-    fn physical(model: &Model) -> Inertia {
+    /// The physical masses: `node_mass` (the state's: belt and material).
+    fn physical(model: &Model, node_mass: &[f64]) -> Inertia {
+        let inv_mass: Vec<f64> = node_mass.iter().map(|m| 1.0 / m).collect();
         Inertia {
-            mass: model.mass.clone(),
-            inv_mass: model.inv_mass.clone(),
-            same_inv_mass: all_same(&model.inv_mass),
+            mass: node_mass.to_vec(),
+            // With loads the masses change during the run: never take them as uniform.
+            same_inv_mass: if model.loads.is_empty() {
+                all_same(&inv_mass)
+            } else {
+                None
+            },
+            inv_mass,
             takeup_mass: model
                 .pulleys
                 .iter()
                 .map(|p| p.takeup.as_ref().map_or(f64::INFINITY, |t| t.moving_mass))
                 .collect(),
+            physical: true,
         }
     }
 
@@ -170,6 +186,7 @@ impl Inertia {
             same_inv_mass: all_same(&inv_mass),
             inv_mass,
             takeup_mass,
+            physical: false,
         }
     }
 }
@@ -276,7 +293,7 @@ impl Simulation {
     /// array lengths must match the model (checked by the checkpoint reader).
     pub(crate) fn from_parts(model: Model, state: State) -> Simulation {
         let scratch = Scratch::new(&model);
-        let inertia = Inertia::physical(&model);
+        let inertia = Inertia::physical(&model, &state.node_mass);
         let recording = Recording::new(
             Channels::default(),
             model.nodes,
@@ -324,8 +341,26 @@ impl Simulation {
             }
         }
         let profile = self.profile.as_ref().map(|_| vec![0.0; model.stages.len()]);
+        // The belt masses or the loads may have changed: re-place the material at once
+        // (the nodes keep their velocities); changed load points are found anew.
+        if model.loads.len() != self.model.loads.len()
+            || model
+                .loads
+                .iter()
+                .zip(&self.model.loads)
+                .any(|(a, b)| a.start != b.start || a.end != b.end || a.forward != b.forward)
+        {
+            self.state.load_edges =
+                crate::loads::initial_edges(&model.loads, &self.state.position, model.load_belt());
+        }
+        self.state.node_mass = crate::loads::node_masses(
+            &model.mass,
+            &model.loads,
+            &self.state.load_edges,
+            model.load_belt(),
+        );
         self.scratch = Scratch::new(&model);
-        self.inertia = Inertia::physical(&model);
+        self.inertia = Inertia::physical(&model, &self.state.node_mass);
         self.model = model;
         self.profile = profile;
         Ok(())
@@ -345,7 +380,7 @@ impl Simulation {
         let m = &self.model;
         let s = &mut self.state;
         let sc = &mut self.scratch;
-        let mass = &self.inertia.mass;
+        let inertia = &mut self.inertia;
         let dt = m.dt;
         // The friction solve divides the relative speed by this step; an infinite step
         // drops the velocity term (quasi-static friction).
@@ -369,9 +404,25 @@ impl Simulation {
             .iter_mut()
             .for_each(|f| *f = FrictionOutcome::default());
         sc.idler_torque.iter_mut().for_each(|t| *t = 0.0);
+        sc.idler_resistance.iter_mut().for_each(|f| *f = 0.0);
         for (k, &stage) in m.stages.iter().enumerate() {
             let started = self.profile.as_ref().map(|_| Instant::now());
             match stage {
+                Stage::Loads => {
+                    let physical = inertia.physical;
+                    crate::loads::update(
+                        &m.loads,
+                        &m.mass,
+                        m.load_belt(),
+                        &s.position,
+                        &mut s.velocity,
+                        &mut s.load_edges,
+                        &mut crate::loads::MassArrays {
+                            node_mass: &mut s.node_mass,
+                            inertia: physical.then_some((&mut inertia.mass, &mut inertia.inv_mass)),
+                        },
+                    );
+                }
                 // The axial pass writes every node force (no reset pass) and adds the
                 // weights (no gravity pass): see forces::axial and docs/performance.md.
                 Stage::Gravity => {}
@@ -382,7 +433,7 @@ impl Simulation {
                     &m.axial_damping,
                     &m.rest_length,
                     m.tension_only,
-                    &m.mass,
+                    &s.node_mass,
                     gravity,
                     &mut sc.tension,
                     &mut sc.force,
@@ -393,7 +444,7 @@ impl Simulation {
                     &m.axial_stiffness,
                     &m.rest_length,
                     m.tension_only,
-                    &m.mass,
+                    &s.node_mass,
                     gravity,
                     &mut sc.tension,
                     &mut sc.force,
@@ -454,6 +505,29 @@ impl Simulation {
                         );
                     }
                 }
+                // A friction-like resistance: on with friction (quasi-static in the
+                // relaxation, where `friction_dt` is infinite).
+                Stage::RunningResistance => {
+                    if effects.friction {
+                        for (k, d) in m.idlers.iter().enumerate() {
+                            let c = sc.idler_contacts[k];
+                            if !c.active || d.resistance == 0.0 {
+                                continue;
+                            }
+                            let limit =
+                                d.resistance * (c.normal_force + d.rotating_mass * m.gravity);
+                            let (f, _) = friction::running_resistance(
+                                &c,
+                                limit,
+                                &s.velocity,
+                                &inertia.mass,
+                                friction_dt,
+                                &mut sc.force,
+                            );
+                            sc.idler_resistance[k] = f;
+                        }
+                    }
+                }
                 Stage::Drives => {
                     if effects.drives {
                         for (j, p) in m.pulleys.iter().enumerate() {
@@ -493,7 +567,7 @@ impl Simulation {
                                 &sc.contacts[j],
                                 &fp,
                                 &s.velocity,
-                                mass,
+                                &inertia.mass,
                                 friction_dt,
                                 &mut sc.force,
                                 &mut sc.stick[j],
@@ -528,7 +602,7 @@ impl Simulation {
                                 &c,
                                 &fi,
                                 &s.velocity,
-                                mass,
+                                &inertia.mass,
                                 friction_dt,
                                 &mut sc.force,
                             );
@@ -833,9 +907,9 @@ impl Simulation {
         let n = m.nodes;
         for i in 0..n {
             let v = s.velocity[i] + sc.force[i] * (half * self.inertia.inv_mass[i]);
-            e.kinetic += 0.5 * m.mass[i] * v.norm_squared();
+            e.kinetic += 0.5 * s.node_mass[i] * v.norm_squared();
             if m.gravity > 0.0 {
-                e.gravity += m.mass[i] * m.gravity * s.position[i].y;
+                e.gravity += s.node_mass[i] * m.gravity * s.position[i].y;
             }
             let j = (i + 1) % n;
             let stretch = (s.position[j] - s.position[i]).norm() - m.rest_length[i];
@@ -999,7 +1073,7 @@ impl Simulation {
         // Back to the scene's own stiffness, whatever the softened stages did.
         self.model = full;
         self.scratch = Scratch::new(&self.model);
-        self.inertia = Inertia::physical(&self.model);
+        self.inertia = Inertia::physical(&self.model, &self.state.node_mass);
         let mut total = stages?;
         let remaining = options.max_steps - total.steps;
         // Converged only once the scene's own stiffness has relaxed too.
@@ -1096,7 +1170,7 @@ impl Simulation {
             Relaxation::KineticEnergy => self.relax_kinetic(effects, options),
             Relaxation::Fire => self.relax_fire(effects, options),
         };
-        self.inertia = Inertia::physical(&self.model);
+        self.inertia = Inertia::physical(&self.model, &self.state.node_mass);
         self.state.zero_velocities();
         self.state.time = time;
         self.state.step = step;

@@ -1,5 +1,6 @@
 //! The mutable state of a run: plain arrays that can be copied, saved and restored.
 
+use crate::loads::LoadEdges;
 use crate::model::Model;
 use nalgebra::Vector2;
 
@@ -40,6 +41,11 @@ pub struct State {
     pub idler_element: Vec<usize>,
     /// Work done by drive torques since the start, J.
     pub drive_work: f64,
+    /// Node masses now: the belt's plus the material on the node's tributary length, kg
+    /// (equal to `Model::mass` without loads).
+    pub node_mass: Vec<f64>,
+    /// Where each load's zone is (`crate::loads`).
+    pub load_edges: Vec<LoadEdges>,
 }
 
 impl State {
@@ -54,6 +60,9 @@ impl State {
             .iter()
             .map(|d| crate::contact::supported_element(d.center, &position))
             .collect();
+        let load_edges = crate::loads::initial_edges(&model.loads, &position, model.load_belt());
+        let node_mass =
+            crate::loads::node_masses(&model.mass, &model.loads, &load_edges, model.load_belt());
         State {
             time: 0.0,
             step: 0,
@@ -67,6 +76,8 @@ impl State {
             pulley_window: vec![ContactWindow::default(); model.pulleys.len()],
             idler_element,
             drive_work: 0.0,
+            node_mass,
+            load_edges,
         }
     }
 

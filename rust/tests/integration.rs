@@ -6,5 +6,6 @@ mod case_h_statics;
 mod checkpoint;
 mod friction_contact;
 mod kernels;
+mod load_resistance;
 mod recorder;
 mod recording_params;

@@ -176,6 +176,28 @@ impl PySimulation {
         PyArray1::from_slice(py, &self.inner.model.mass)
     }
 
+    /// Node masses now (belt and material), kg.
+    fn node_masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.inner.state.node_mass)
+    }
+
+    /// Each load's zone now: rows of (start, end, length) in metres of unstretched belt
+    /// from node 0 (start and end: the material coordinates of the belt points nearest the
+    /// loading and discharge points; length: of the zone between them), shape (loads, 3).
+    fn load_zones<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let sim = &self.inner;
+        let belt = sim.model.load_belt();
+        let lengths = crate::loads::zone_lengths(&sim.model.loads, &sim.state.load_edges, belt);
+        let rows: Vec<f64> = sim
+            .state
+            .load_edges
+            .iter()
+            .zip(lengths)
+            .flat_map(|(e, len)| [e.start, e.end, len])
+            .collect();
+        array(py, &rows, &[sim.state.load_edges.len(), 3])
+    }
+
     /// Whether the last run stopped on Ctrl-C.
     #[getter]
     fn interrupted(&self) -> bool {

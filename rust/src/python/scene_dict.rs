@@ -3,7 +3,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, PulleySpec,
+    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, LoadSpec, PulleySpec,
     RecordingParams, Scene, SolverParams, Table, TakeupSpec, Wrap,
 };
 use crate::suggest::unknown_key_rule;
@@ -402,9 +402,23 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
             contact_stiffness: d.f64("contact_stiffness", dd.contact_stiffness)?,
             contact_damping: d.f64("contact_damping", dd.contact_damping)?,
             friction: friction(&mut d)?,
+            resistance: d.f64("resistance", dd.resistance)?,
+            rotating_mass: d.f64("rotating_mass", dd.rotating_mass)?,
         };
         d.finish()?;
         idlers.push(spec);
+    }
+
+    let mut loads = Vec::new();
+    for mut l in root.list("loads")? {
+        let ld = LoadSpec::default();
+        let spec = LoadSpec {
+            mass_per_length: l.f64("mass_per_length", ld.mass_per_length)?,
+            start: l.vec2("start", ld.start)?,
+            end: l.vec2("end", ld.end)?,
+        };
+        l.finish()?;
+        loads.push(spec);
     }
 
     let sd = SolverParams::default();
@@ -439,6 +453,7 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
         belt,
         pulleys,
         idlers,
+        loads,
         gravity,
         solver,
     })

@@ -106,9 +106,20 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
         d.set_item("contact_stiffness", k.contact_stiffness)?;
         d.set_item("contact_damping", k.contact_damping)?;
         d.set_item("friction", friction(py, &k.friction)?)?;
+        d.set_item("resistance", k.resistance)?;
+        d.set_item("rotating_mass", k.rotating_mass)?;
         idlers.append(d)?;
     }
     root.set_item("idlers", idlers)?;
+    let loads = PyList::empty(py);
+    for l in &s.loads {
+        let d = PyDict::new(py);
+        d.set_item("mass_per_length", l.mass_per_length)?;
+        d.set_item("start", l.start.to_vec())?;
+        d.set_item("end", l.end.to_vec())?;
+        loads.append(d)?;
+    }
+    root.set_item("loads", loads)?;
     root.set_item("gravity", s.gravity)?;
     let solver = PyDict::new(py);
     solver.set_item("time_step", s.solver.time_step)?;
