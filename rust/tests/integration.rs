@@ -8,3 +8,4 @@ mod friction_contact;
 mod kernels;
 mod recorder;
 mod recording_params;
+mod speed_drive;
