@@ -189,8 +189,13 @@ def test_full_scene_is_valid():
 
 # None-valued keys of full_scene(): set to a number and corrupted too.
 OPTIONAL_FLOATS = [("solver", "time_step"), ("pulleys", 1, "inertia")]
-# Non-finite values that are valid: travel limits may be infinite outwards.
-ALLOWED = {(("pulleys", 1, "takeup", "travel_min"), -math.inf), (("pulleys", 1, "takeup", "travel_max"), math.inf)}
+# Non-finite values that are valid: travel limits may be infinite outwards, a drive's
+# torque limit may be infinite (its default).
+ALLOWED = {
+    (("pulleys", 1, "takeup", "travel_min"), -math.inf),
+    (("pulleys", 1, "takeup", "travel_max"), math.inf),
+    (("pulleys", 0, "drive", "max_torque"), math.inf),
+}
 
 
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf], ids=["nan", "inf", "-inf"])

@@ -12,7 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import beltrs
-from beltrs import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver, Takeup
+from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
+                    StartCurve, Takeup)
 from beltrs import scene_file
 from beltrs.scene import unknown_key_message
 from beltrs.scenes import hustrulid_loop
@@ -389,6 +390,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`friction`": (Friction, None),
         "`takeup`": (Takeup, None),
         "`drive`": (Drive, None),
+        "`start_curve`": (StartCurve, None),
         "`brake`": (Brake, None),
         "`[[idlers]]`": (Idler, None),
         "`[[loads]]`": (Load, None),

@@ -11,7 +11,7 @@ from ._beltrs import __version__
 from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .result import Result
-from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, Takeup
+from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
 from .simulation import Simulation
 
@@ -33,6 +33,7 @@ __all__ = [
     "SceneError",
     "Simulation",
     "Solver",
+    "StartCurve",
     "Takeup",
     "TimeStepError",
     "__version__",

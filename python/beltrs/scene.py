@@ -39,6 +39,7 @@ __all__ = [
     "Recording",
     "Scene",
     "Solver",
+    "StartCurve",
     "Takeup",
 ]
 
@@ -97,9 +98,106 @@ class Takeup:
         }
 
 
+#: Shapes of a starting curve (:class:`StartCurve`).
+START_SHAPES = ("harrison", "nordell", "cubic", "linear")
+
+
+@dataclass
+class StartCurve:
+    """Starting curve of a speed-controlled drive (Guo & Wang 2020 §4; ``docs/drives.md``):
+    the belt speed at the drive pulley surface against time.
+
+    With tau = (t - t0)/T the fraction of a ramp of duration T begun at t0, each shape is
+    v0 * s(tau): ``"harrison"`` s = (1 - cos(pi*tau))/2; ``"nordell"`` s = 2*tau^2 for
+    tau <= 1/2, -1 + 4*tau - 2*tau^2 beyond (speed and acceleration continuous);
+    ``"cubic"`` s = 3*tau^2 - 2*tau^3; ``"linear"`` s = tau.
+
+    Before ``start`` the speed is 0. With ``prestart`` > 0 the drive first runs up to
+    ``creep_speed`` over ``creep_ramp`` seconds (same shape) and holds it; the main ramp,
+    from the creep speed (0 without a pre-start) to ``speed`` over ``ramp`` seconds, begins
+    at ``start + prestart``. Afterwards the speed stays at ``speed``.
+
+    Attributes:
+        shape: ``"harrison"`` (default), ``"nordell"``, ``"cubic"`` or ``"linear"``.
+        speed: final belt speed v0 at the drive pulley surface, m/s, counter-clockwise
+            positive (pulley speed = speed / radius). Required: finite, non-zero.
+        ramp: duration T of the main ramp, s, > 0. Required.
+        start: time the curve begins, s (absolute simulated time). Default 0.
+        prestart: duration of the pre-start (delay) section, s, >= 0. Default 0 (none).
+        creep_speed: speed held during the pre-start, m/s, between 0 and ``speed`` (same
+            sign). Default None: 10 % of ``speed``. Only with ``prestart`` > 0.
+        creep_ramp: duration of the run-up to the creep speed, s, in (0, ``prestart``].
+            Default None: ``prestart``/2. Only with ``prestart`` > 0.
+    """
+
+    shape: str = "harrison"
+    speed: Optional[float] = None
+    ramp: Optional[float] = None
+    start: float = 0.0
+    prestart: float = 0.0
+    creep_speed: Optional[float] = None
+    creep_ramp: Optional[float] = None
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "shape": self.shape,
+            "speed": self.speed,
+            "ramp": self.ramp,
+            "start": self.start,
+            "prestart": self.prestart,
+            "creep_speed": self.creep_speed,
+            "creep_ramp": self.creep_ramp,
+        }
+
+    def evaluate(self, t: Any) -> tuple[Any, Any]:
+        """Belt speed (m/s) and acceleration (m/s^2) at time(s) ``t`` (s), computed by the
+        engine's own formulas (exact, analytic). A scalar gives floats, a sequence or array
+        gives arrays of its shape.
+
+        Raises:
+            beltrs.SceneError: a field breaks its rule (named ``start_curve.<field>``).
+        """
+        import numpy as np
+
+        from ._beltrs import start_curve_eval
+
+        times = np.asarray(t, dtype=float)
+        speed, accel = start_curve_eval(self.to_dict(), times.ravel().tolist())
+        if times.ndim == 0:
+            return float(speed[0]), float(accel[0])
+        return speed.reshape(times.shape), accel.reshape(times.shape)
+
+    def speed_at(self, t: Any) -> Any:
+        """Belt speed at time(s) ``t`` (s), m/s (see :meth:`evaluate`)."""
+        return self.evaluate(t)[0]
+
+    def acceleration_at(self, t: Any) -> Any:
+        """Belt acceleration at time(s) ``t`` (s), m/s^2 (see :meth:`evaluate`)."""
+        return self.evaluate(t)[1]
+
+    @property
+    def end(self) -> float:
+        """Time the curve reaches ``speed`` for good, s: start + prestart + ramp."""
+        return float(self.start) + float(self.prestart) + float(self.ramp or 0.0)
+
+
 @dataclass
 class Drive:
-    """Drive torque T(t, w) = f(t) * g(w) - viscous * w (thesis eq. 4.66).
+    """A drive on a pulley, torque-controlled or speed-controlled.
+
+    Torque-controlled (thesis eq. 4.66): T(t, w) = f(t) * g(w) - viscous * w.
+
+    Speed-controlled (``start_curve`` given; ``docs/drives.md``): a motor under speed
+    control (a VFD) supplies each step the torque that makes the pulley follow the curve
+    (pulley speed = curve speed / radius), if that torque is within +-``max_torque``;
+    otherwise it supplies +-``max_torque`` and the pulley moves freely under it (it falls
+    behind and catches up at the limit). ``viscous`` then acts as a load torque; the torque
+    table must be zero (left at its default) and ``speed``/``speed_factor`` absent. A pulley
+    with a speed-controlled drive cannot also have a brake. The recorded drive torque (and
+    the drive work) is the motor's torque plus the load torque.
 
     Attributes:
         time: abscissae of f, s, strictly increasing. Default [0].
@@ -109,6 +207,10 @@ class Drive:
         speed_factor: g(w), dimensionless (e.g. a motor curve). Default: none.
         viscous: load torque per unit speed, N*m*s/rad. Default 0.
         inertia: motor and gearbox inertia added to the pulley, kg*m^2. Default 0.
+        start_curve: the starting curve of a speed-controlled drive. Default None
+            (torque-controlled).
+        max_torque: torque limit of a speed-controlled drive's motor (e.g. its breakdown
+            torque), N*m, > 0. Default inf (no limit). Only with ``start_curve``.
     """
 
     time: Sequence[float] = (0.0,)
@@ -117,6 +219,8 @@ class Drive:
     speed_factor: Optional[Sequence[float]] = None
     viscous: float = 0.0
     inertia: float = 0.0
+    start_curve: Optional[StartCurve] = None
+    max_torque: float = math.inf
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -148,6 +252,8 @@ class Drive:
             "torque": [float(t) for t in self.torque],
             "viscous": self.viscous,
             "inertia": self.inertia,
+            "start_curve": None if self.start_curve is None else self.start_curve.to_dict(),
+            "max_torque": self.max_torque,
         }
         if self.speed is not None or self.speed_factor is not None:
             d["speed"] = None if self.speed is None else [float(w) for w in self.speed]

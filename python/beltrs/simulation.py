@@ -382,8 +382,10 @@ class Simulation:
         self._with_pulley(j, takeup=replace(takeup, counterweight=mass))
 
     def set_drive(self, pulley: Union[int, str], drive: Optional[Drive]) -> None:
-        """Set (or remove, with None) the drive of ``pulley``. Drive tables use absolute
-        simulated time (see :attr:`time`)."""
+        """Set (or remove, with None) the drive of ``pulley``. Drive tables and starting
+        curves use absolute simulated time (see :attr:`time`): a speed-controlled drive
+        started now is ``Drive(start_curve=StartCurve(..., start=sim.time))``
+        (``docs/drives.md``)."""
         self._with_pulley(pulley, drive=drive)
 
     def set_friction(self, pulley: Union[int, str], friction: Optional[Friction]) -> None:

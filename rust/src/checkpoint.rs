@@ -17,7 +17,9 @@
 //!
 //! The payload holds, in order: the engine version that wrote it (a string); the scene
 //! (every field of [`Scene`], so parameters changed during a run, e.g. a counterweight or a
-//! drive, are kept); the node count and the time step the model was compiled to (checked
+//! drive, are kept; a drive is tagged 1 when torque-controlled, 2 when speed-controlled, in
+//! which case its starting curve and torque limit follow its other fields, so files of
+//! torque drives are unchanged); the node count and the time step the model was compiled to (checked
 //! on load: the scene must compile to the same model); and the [`State`]: time, step,
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
@@ -45,6 +47,7 @@ use crate::scene::{
     Scene, SolverParams, Table, TakeupSpec, Wrap,
 };
 use crate::simulation::Simulation;
+use crate::start_curve::{StartCurve, StartShape};
 use crate::state::{ContactWindow, State};
 use nalgebra::Vector2;
 use std::io::Write;
@@ -566,11 +569,26 @@ fn write_scene(w: &mut Writer, s: &Scene) {
         match &p.drive {
             None => w.u8(0),
             Some(d) => {
-                w.u8(1);
+                w.u8(if d.start_curve.is_some() { 2 } else { 1 });
                 w.table(&d.torque);
                 w.table(&d.speed_factor);
                 w.f64(d.viscous);
                 w.f64(d.inertia);
+                if let Some(c) = &d.start_curve {
+                    w.u8(match c.shape {
+                        StartShape::Harrison => 0,
+                        StartShape::Nordell => 1,
+                        StartShape::Cubic => 2,
+                        StartShape::Linear => 3,
+                    });
+                    w.f64(c.speed);
+                    w.f64(c.ramp);
+                    w.f64(c.start);
+                    w.f64(c.prestart);
+                    w.opt_f64(c.creep_speed);
+                    w.opt_f64(c.creep_ramp);
+                    w.f64(d.max_torque);
+                }
             }
         }
         match &p.brake {
@@ -655,15 +673,36 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
         } else {
             None
         };
-        let drive = if r.bool(&f("drive"))? {
-            Some(DriveSpec {
-                torque: r.table(&f("drive.torque"))?,
-                speed_factor: r.table(&f("drive.speed_factor"))?,
-                viscous: r.f64(&f("drive.viscous"))?,
-                inertia: r.f64(&f("drive.inertia"))?,
-            })
-        } else {
-            None
+        let drive = match r.u8(&f("drive"))? {
+            0 => None,
+            tag @ (1 | 2) => {
+                let mut d = DriveSpec {
+                    torque: r.table(&f("drive.torque"))?,
+                    speed_factor: r.table(&f("drive.speed_factor"))?,
+                    viscous: r.f64(&f("drive.viscous"))?,
+                    inertia: r.f64(&f("drive.inertia"))?,
+                    ..DriveSpec::default()
+                };
+                if tag == 2 {
+                    let what = f("drive.start_curve");
+                    let shape = match r.u8(&what)? {
+                        t @ 0..=3 => StartShape::ALL[t as usize],
+                        t => return Err(format!("corrupt: {what}.shape tag {t}")),
+                    };
+                    d.start_curve = Some(StartCurve {
+                        shape,
+                        speed: r.f64(&what)?,
+                        ramp: r.f64(&what)?,
+                        start: r.f64(&what)?,
+                        prestart: r.f64(&what)?,
+                        creep_speed: r.opt_f64(&what)?,
+                        creep_ramp: r.opt_f64(&what)?,
+                    });
+                    d.max_torque = r.f64(&f("drive.max_torque"))?;
+                }
+                Some(d)
+            }
+            t => return Err(format!("corrupt: {} tag {t}", f("drive"))),
         };
         let brake = if r.bool(&f("brake"))? {
             Some(BrakeSpec {

@@ -25,6 +25,52 @@ pub struct StickScratch {
     pub force: Vec<f64>,
 }
 
+/// Prescribed motion of a pulley with a limited torque: whatever holds the pulley (a brake
+/// that stops it, a speed-controlled drive that makes it follow a starting curve) supplies
+/// the torque that gives the pulley the prescribed speed at the end of the step, if that
+/// torque is within its capacity; otherwise it supplies its capacity (in the direction of
+/// the torque needed) and the pulley moves freely under it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prescribed {
+    /// Angular speed the pulley is to have at t + Δt/2, rad/s.
+    pub omega: f64,
+    /// Largest torque the holder can supply, N·m, ≥ 0 (may be +∞).
+    pub capacity: f64,
+}
+
+impl Prescribed {
+    /// A brake of this capacity (N·m) holding the pulley at rest.
+    pub fn at_rest(capacity: f64) -> Prescribed {
+        Prescribed {
+            omega: 0.0,
+            capacity,
+        }
+    }
+
+    /// Angular acceleration (rad/s²) that takes the pulley from `omega` (at t − Δt/2) to
+    /// the prescribed speed in one step `dt`; 0 for an infinite step (quasi-static).
+    #[inline]
+    pub fn alpha(&self, omega: f64, dt: f64) -> f64 {
+        if dt.is_finite() {
+            (self.omega - omega) / dt
+        } else {
+            0.0
+        }
+    }
+
+    /// The holder's torque when `needed` (N·m) is the torque that gives the prescribed
+    /// motion: (`needed`, true) if within the capacity, else (±capacity in the direction of
+    /// `needed`, false).
+    #[inline]
+    pub fn limit(&self, needed: f64) -> (f64, bool) {
+        if needed.abs() <= self.capacity {
+            (needed, true)
+        } else {
+            (self.capacity.copysign(needed), false)
+        }
+    }
+}
+
 /// The pulley seen by the friction solve.
 #[derive(Debug, Clone, Copy)]
 pub struct FrictionPulley {
@@ -42,10 +88,10 @@ pub struct FrictionPulley {
     pub mu_static: f64,
     /// Kinetic coefficient.
     pub mu_kinetic: f64,
-    /// Holding capacity of a brake on the pulley, N·m (None: no brake acting). The brake is
-    /// solved with the friction: it either holds the pulley (which then moves as
-    /// prescribed, stopping this step) or slides at its capacity.
-    pub brake_capacity: Option<f64>,
+    /// Prescribed motion (a brake or a speed-controlled drive), solved with the friction:
+    /// the holder either holds the pulley to the prescribed speed this step or supplies its
+    /// capacity. `None`: the pulley is free.
+    pub prescribed: Option<Prescribed>,
 }
 
 /// Result of one pulley's friction solve.
@@ -59,10 +105,12 @@ pub struct FrictionOutcome {
     pub tangential: f64,
     /// Number of slipping nodes.
     pub slipping: usize,
-    /// Brake torque, N·m, when the pulley has a brake (solved with the friction).
-    pub brake_torque: Option<f64>,
-    /// The brake holds the pulley: it stops this step (exactly, not up to rounding).
-    pub brake_holds: bool,
+    /// Torque of the holder (brake or speed-controlled drive), N·m, when the pulley's
+    /// motion is prescribed (solved with the friction).
+    pub held_torque: Option<f64>,
+    /// The holder holds the pulley: it reaches the prescribed speed this step (exactly, not
+    /// up to rounding).
+    pub holds: bool,
 }
 
 /// Solve and apply stick-force friction for the nodes touching one pulley
@@ -73,7 +121,8 @@ pub struct FrictionOutcome {
 /// f_i = m_i v_n,i/Δt + t_i·F_i − m_i R (T + R·A)/(I + R² M), where A and M sum
 /// m_j v_n,j/Δt + t_j·F_j and m_j over S and T is the applied torque plus the torque of the
 /// slipping nodes. The node receives −f_i t_i, the pulley +f_i t_i and torque R f_i.
-/// A brake on the pulley is solved here too (see [`FrictionPulley::brake_capacity`]).
+/// A prescribed motion (brake, speed-controlled drive) is solved here too (see
+/// [`FrictionPulley::prescribed`]).
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_stick_friction(
     contacts: &PulleyContacts,
@@ -97,17 +146,15 @@ pub fn pulley_stick_friction(
         scratch.sticking.push(true);
         scratch.force.push(0.0);
     }
-    // A brake that can hold the pulley fixes its motion: it stops this step. The nodes then
-    // stick to (or slip on) a pulley of prescribed motion, one by one, and the brake takes
-    // what the belt and the drive leave. If that exceeds its capacity it slides at the
-    // capacity, opposing the motion (or the tendency to move), a known torque below.
-    let mut brake = None;
-    if let Some(capacity) = pulley.brake_capacity {
-        let alpha = if dt.is_finite() {
-            -pulley.omega / dt
-        } else {
-            0.0
-        };
+    // A holder (brake, speed-controlled drive) that can hold the pulley fixes its motion:
+    // it reaches the prescribed speed this step (a brake stops it). The nodes then stick to
+    // (or slip on) a pulley of prescribed motion, one by one, and the holder takes what the
+    // belt and the other torques leave. If that exceeds its capacity it supplies the
+    // capacity (a brake slides, opposing the motion or the tendency to move; a drive is at
+    // its torque limit), a known torque below.
+    let mut held = None;
+    if let Some(prescribed) = pulley.prescribed {
+        let alpha = prescribed.alpha(pulley.omega, dt);
         let mut tangential = 0.0;
         let mut slipped = 0;
         for k in 0..nc {
@@ -122,15 +169,16 @@ pub fn pulley_stick_friction(
             tangential += f;
         }
         let needed = pulley.inertia * alpha - pulley.applied_torque - r * tangential;
-        if needed.abs() <= capacity {
-            let mut out = apply(contacts, scratch, force, r, slipped, Some(needed));
-            out.brake_holds = true;
+        let (torque, holds) = prescribed.limit(needed);
+        if holds {
+            let mut out = apply(contacts, scratch, force, r, slipped, Some(torque));
+            out.holds = true;
             return out;
         }
-        brake = Some(capacity.copysign(needed));
+        held = Some(torque);
         scratch.sticking.iter_mut().for_each(|s| *s = true);
     }
-    let mut known_torque = pulley.applied_torque + brake.unwrap_or(0.0);
+    let mut known_torque = pulley.applied_torque + held.unwrap_or(0.0);
     let mut slipping = 0;
     loop {
         let (mut a_sum, mut m_sum) = (0.0, 0.0);
@@ -165,7 +213,7 @@ pub fn pulley_stick_friction(
         known_torque += r * fk;
         slipping += 1;
     }
-    apply(contacts, scratch, force, r, slipping, brake)
+    apply(contacts, scratch, force, r, slipping, held)
 }
 
 /// The friction force a contact can carry: the stick force `f` if within µs·N, else µk·N
@@ -185,11 +233,11 @@ fn apply(
     force: &mut [V2],
     radius: f64,
     slipping: usize,
-    brake_torque: Option<f64>,
+    held_torque: Option<f64>,
 ) -> FrictionOutcome {
     let mut out = FrictionOutcome {
         slipping,
-        brake_torque,
+        held_torque,
         ..Default::default()
     };
     for k in 0..contacts.len() {

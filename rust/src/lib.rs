@@ -25,6 +25,7 @@ pub mod presets;
 pub mod record;
 pub mod scene;
 pub mod simulation;
+pub mod start_curve;
 pub mod state;
 pub mod suggest;
 
@@ -35,3 +36,4 @@ pub use error::{BeltError, BeltResult};
 pub use model::{Model, Stage};
 pub use scene::Scene;
 pub use simulation::{Relaxation, Simulation, StabiliseOptions, StabiliseReport};
+pub use start_curve::{StartCurve, StartShape};

@@ -5,6 +5,7 @@
 //! here changes during a run; the mutable part lives in [`crate::state::State`].
 
 use crate::error::{BeltError, BeltResult};
+use crate::friction::Prescribed;
 use crate::geometry::BeltPath;
 use crate::loads::LoadModel;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
@@ -38,6 +39,10 @@ pub enum Stage {
     PulleyFriction,
     /// Stick-force friction between belt and idlers (thesis eq. 4.103–4.117, re-derived).
     IdlerFriction,
+    /// Speed-controlled drives: the torque that makes a pulley follow its starting curve,
+    /// within the motor's limit (`docs/drives.md`). Solved with the belt friction when the
+    /// pulley has friction; this stage takes the result (or solves a pulley without).
+    SpeedDrives,
     /// Coulomb brakes with holding at rest.
     Brakes,
     /// Gravity-takeup translation (thesis eq. 4.63–4.65).
@@ -59,6 +64,7 @@ impl Stage {
             Stage::Drives => "drives",
             Stage::PulleyFriction => "pulley_friction",
             Stage::IdlerFriction => "idler_friction",
+            Stage::SpeedDrives => "speed_drives",
             Stage::Brakes => "brakes",
             Stage::Takeups => "takeups",
         }
@@ -105,6 +111,29 @@ pub struct PulleyModel {
     pub brake: Option<BrakeSpec>,
     /// Search margin beyond the radius for the contact window, m.
     pub window_margin: f64,
+}
+
+impl PulleyModel {
+    /// The brake's hold at time `time` (s): at rest, up to its capacity then.
+    #[inline]
+    pub fn brake_hold(&self, time: f64) -> Option<Prescribed> {
+        self.brake
+            .as_ref()
+            .map(|b| Prescribed::at_rest(b.capacity.eval(time)))
+    }
+
+    /// The speed-controlled drive's hold for the step from `time` to `time + dt` (s): the
+    /// pulley speed at the mid-step, where central differences place it, is the curve's
+    /// belt speed there over the radius, ω(t + Δt/2) = v(t + Δt/2)/r, up to `max_torque`.
+    #[inline]
+    pub fn speed_hold(&self, time: f64, dt: f64) -> Option<Prescribed> {
+        let drive = self.drive.as_ref()?;
+        let curve = drive.start_curve.as_ref()?;
+        Some(Prescribed {
+            omega: curve.speed_at(time + 0.5 * dt) / self.radius,
+            capacity: drive.max_torque,
+        })
+    }
 }
 
 /// Compiled idler.
@@ -401,6 +430,12 @@ impl Model {
         }
         if idlers.iter().any(|d| !d.friction.is_none()) {
             stages.push(Stage::IdlerFriction);
+        }
+        if pulleys
+            .iter()
+            .any(|p| p.drive.as_ref().is_some_and(|d| d.start_curve.is_some()))
+        {
+            stages.push(Stage::SpeedDrives);
         }
         if pulleys.iter().any(|p| p.brake.is_some()) {
             stages.push(Stage::Brakes);

@@ -6,6 +6,7 @@
 //! [`Scene::validate`] runs (it is called by [`crate::model::Model::compile`]).
 
 use crate::error::{BeltError, BeltResult};
+use crate::start_curve::StartCurve;
 
 /// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
 /// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
@@ -203,7 +204,10 @@ impl Table {
     }
 }
 
-/// Drive torque applied to a pulley (thesis eq. 4.66): T(t, ω) = f(t)·g(ω) − b·ω.
+/// A drive on a pulley. Torque-controlled (thesis eq. 4.66): T(t, ω) = f(t)·g(ω) − b·ω.
+/// Speed-controlled (a VFD following a [`StartCurve`], `docs/drives.md`): each step the
+/// motor supplies the torque that makes the pulley follow the curve, within ±`max_torque`,
+/// plus the load torque −b·ω; the torque table must then be zero and `speed_factor` empty.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DriveSpec {
     /// f(t): torque against time, N·m, positive counter-clockwise. Default: 0.
@@ -216,6 +220,11 @@ pub struct DriveSpec {
     pub viscous: f64,
     /// I_D: inertia of motor, gearbox and coupling added to the pulley, kg·m². Default 0.
     pub inertia: f64,
+    /// Starting curve of a speed-controlled drive; `None`: torque-controlled. Default `None`.
+    pub start_curve: Option<StartCurve>,
+    /// Torque limit of a speed-controlled drive's motor (e.g. its breakdown torque), N·m,
+    /// > 0, may be +∞; only with `start_curve`. Default +∞.
+    pub max_torque: f64,
 }
 
 impl Default for DriveSpec {
@@ -225,6 +234,8 @@ impl Default for DriveSpec {
             speed_factor: Table::default(),
             viscous: 0.0,
             inertia: 0.0,
+            start_curve: None,
+            max_torque: f64::INFINITY,
         }
     }
 }
@@ -239,6 +250,56 @@ impl DriveSpec {
             self.speed_factor.eval(omega)
         };
         self.torque.eval(t) * factor - self.viscous * omega
+    }
+}
+
+impl DriveSpec {
+    /// The rules of a speed-controlled drive (`pulley` names the pulley, e.g. `pulleys[0]`):
+    /// a valid curve, no torque table, no speed factor, no brake on the same pulley, and a
+    /// `max_torque` > 0 that is given only with a curve.
+    fn validate_speed_control(&self, pulley: &str, has_brake: bool) -> BeltResult<()> {
+        let f = format!("{pulley}.drive");
+        if self.max_torque.is_nan() || self.max_torque <= 0.0 {
+            return Err(BeltError::invalid(
+                format!("{f}.max_torque"),
+                self.max_torque,
+                "must be > 0 (may be inf)",
+            ));
+        }
+        let Some(curve) = &self.start_curve else {
+            if self.max_torque != f64::INFINITY {
+                // It would be silently ignored.
+                return Err(BeltError::invalid(
+                    format!("{f}.max_torque"),
+                    self.max_torque,
+                    format!("limits a speed-controlled drive only: give {f}.start_curve, or leave max_torque out"),
+                ));
+            }
+            return Ok(());
+        };
+        curve.validate(&format!("{f}.start_curve"))?;
+        if let Some((i, &y)) = self.torque.y.iter().enumerate().find(|(_, y)| **y != 0.0) {
+            return Err(BeltError::invalid(
+                format!("{f}.torque[{i}]"),
+                y,
+                format!("must be 0 with {f}.start_curve: a drive is either torque-controlled (time/torque table) or speed-controlled (start_curve), not both"),
+            ));
+        }
+        if !self.speed_factor.x.is_empty() || !self.speed_factor.y.is_empty() {
+            return Err(BeltError::invalid(
+                format!("{f}.speed_factor"),
+                format!("{:?}", self.speed_factor.y),
+                format!("has no effect with {f}.start_curve (it scales the torque table, which a speed-controlled drive does not have): leave it out"),
+            ));
+        }
+        if has_brake {
+            return Err(BeltError::invalid(
+                format!("{pulley}.brake"),
+                "a brake",
+                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake: the drive holds the pulley itself (remove one of them)"),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -739,6 +800,7 @@ impl Scene {
                 }
                 check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
                 check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
+                d.validate_speed_control(&f, p.brake.is_some())?;
             }
             if let Some(br) = &p.brake {
                 br.capacity

@@ -61,8 +61,10 @@ pub struct Scratch {
     pub drive_torque: Vec<f64>,
     /// Brake torque on each pulley, N·m.
     pub brake_torque: Vec<f64>,
-    /// Whether each pulley's brake holds it this step (it then stops exactly).
-    pub brake_holds: Vec<bool>,
+    /// Speed (rad/s) each pulley is held to at the end of this step by its brake (0) or
+    /// speed-controlled drive (the curve), when the holder can hold it; the integrator then
+    /// sets it exactly. `None`: the pulley moves under its net torque.
+    pub held: Vec<Option<f64>>,
     /// Contact of each idler.
     pub idler_contacts: Vec<IdlerContact>,
     /// Friction torque on each idler, N·m.
@@ -96,7 +98,7 @@ impl Scratch {
             friction: vec![FrictionOutcome::default(); p],
             drive_torque: vec![0.0; p],
             brake_torque: vec![0.0; p],
-            brake_holds: vec![false; p],
+            held: vec![None; p],
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
@@ -399,7 +401,7 @@ impl Simulation {
         };
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
-        sc.brake_holds.iter_mut().for_each(|h| *h = false);
+        sc.held.iter_mut().for_each(|h| *h = None);
         sc.friction
             .iter_mut()
             .for_each(|f| *f = FrictionOutcome::default());
@@ -558,9 +560,10 @@ impl Simulation {
                                 applied_torque: sc.drive_torque[j],
                                 mu_static: static_coefficient,
                                 mu_kinetic: kinetic_coefficient,
-                                brake_capacity: match &p.brake {
-                                    Some(b) if effects.drives => Some(b.capacity.eval(s.time)),
-                                    _ => None,
+                                prescribed: if effects.drives {
+                                    p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, dt))
+                                } else {
+                                    None
                                 },
                             };
                             let out = friction::pulley_stick_friction(
@@ -610,23 +613,40 @@ impl Simulation {
                         }
                     }
                 }
-                Stage::Brakes => {
+                // Prescribed pulley motion with a limited torque: a brake holds at rest, a
+                // speed-controlled drive to its curve (a pulley has at most one of them).
+                Stage::SpeedDrives | Stage::Brakes => {
                     if effects.drives {
+                        let brakes = stage == Stage::Brakes;
                         for (j, p) in m.pulleys.iter().enumerate() {
-                            if let Some(b) = &p.brake {
-                                if let Some(t) = sc.friction[j].brake_torque {
-                                    // Solved with the belt friction.
-                                    sc.brake_torque[j] = t;
-                                    sc.brake_holds[j] = sc.friction[j].brake_holds;
-                                    continue;
+                            let hold = if brakes {
+                                p.brake_hold(s.time)
+                            } else {
+                                p.speed_hold(s.time, dt)
+                            };
+                            let Some(hold) = hold else {
+                                continue;
+                            };
+                            let (torque, holds) = match sc.friction[j].held_torque {
+                                // Solved with the belt friction.
+                                Some(t) => (t, sc.friction[j].holds),
+                                // Torque that gives the prescribed speed this step, within
+                                // the capacity (a brake never reverses the motion).
+                                None => {
+                                    let other = sc.drive_torque[j] + sc.friction[j].torque;
+                                    hold.limit(
+                                        p.inertia * hold.alpha(s.pulley_omega[j], dt) - other,
+                                    )
                                 }
-                                let capacity = b.capacity.eval(s.time);
-                                // Torque that would stop the pulley this step, clipped to
-                                // the capacity: holds at rest, never reverses the motion.
-                                let other = sc.drive_torque[j] + sc.friction[j].torque;
-                                let needed = -(p.inertia * s.pulley_omega[j] / dt + other);
-                                sc.brake_torque[j] = needed.clamp(-capacity, capacity);
-                                sc.brake_holds[j] = needed.abs() <= capacity;
+                            };
+                            if brakes {
+                                sc.brake_torque[j] = torque;
+                            } else {
+                                // The motor's torque adds to the drive's load torque −b·ω.
+                                sc.drive_torque[j] += torque;
+                            }
+                            if holds {
+                                sc.held[j] = Some(hold.omega);
                             }
                         }
                     }
@@ -654,11 +674,11 @@ impl Simulation {
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.pulley_torque(j);
             let old = s.pulley_omega[j];
-            // A holding brake stops the pulley this step; say so exactly.
-            let new = if sc.brake_holds[j] {
-                0.0
-            } else {
-                old + dt * torque / p.inertia
+            // A holding brake stops the pulley this step, a speed-controlled drive within its
+            // limit puts it on its curve; say so exactly.
+            let new = match sc.held[j] {
+                Some(omega) => omega,
+                None => old + dt * torque / p.inertia,
             };
             s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
             s.pulley_omega[j] = new;

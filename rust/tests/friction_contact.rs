@@ -12,7 +12,8 @@ use beltrs::contact::{
     PulleyBody, PulleyContacts,
 };
 use beltrs::friction::{
-    idler_stick_friction, pulley_stick_friction, FrictionIdler, FrictionPulley, StickScratch,
+    idler_stick_friction, pulley_stick_friction, FrictionIdler, FrictionPulley, Prescribed,
+    StickScratch,
 };
 use beltrs::state::ContactWindow;
 use nalgebra::Vector2;
@@ -472,7 +473,7 @@ fn single_case(rng: &mut Rng, moving_centre: bool) -> SingleCase {
         applied_torque: rng.uniform(-500.0, 500.0),
         mu_static: 1e9,
         mu_kinetic: 0.3,
-        brake_capacity: None,
+        prescribed: None,
     };
     let normal = unit(rng.uniform(0.0, std::f64::consts::TAU));
     let v = (0..4).map(|_| rng.vec(5.0)).collect();
@@ -552,7 +553,7 @@ fn stick_force_brings_all_sticking_nodes_to_surface_speed() {
             applied_torque: rng.uniform(-300.0, 300.0),
             mu_static: 1e9,
             mu_kinetic: 0.3,
-            brake_capacity: None,
+            prescribed: None,
         };
         let dt = rng.uniform(1e-5, 5e-4);
         // Five contacts on an arc, with nodes 0, 4, 8 not in contact (must be untouched).
@@ -615,7 +616,7 @@ fn nodes_left_sticking_after_a_slip_still_reach_surface_speed() {
             applied_torque: rng.uniform(-300.0, 300.0),
             mu_static: 0.5,
             mu_kinetic: 0.35,
-            brake_capacity: None,
+            prescribed: None,
         };
         let dt = 1e-4;
         let mut contacts = PulleyContacts::default();
@@ -801,7 +802,7 @@ fn multi_contact_slip_never_reverses_relative_motion() {
         applied_torque: 0.0,
         mu_static: 0.5,
         mu_kinetic: 0.4,
-        brake_capacity: None,
+        prescribed: None,
     };
     let dt = 1e-3;
     let mut contacts = PulleyContacts::default();
@@ -978,7 +979,7 @@ fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
         applied_torque: 40.0,
         mu_static: 0.5,
         mu_kinetic: 0.4,
-        brake_capacity: Some(1.0e4),
+        prescribed: Some(Prescribed::at_rest(1.0e4)),
     };
     let v: Vec<V2> = (0..2)
         .map(|k| tangent(contacts.normal[k]) * (pulley.radius * pulley.omega))
@@ -988,7 +989,7 @@ fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
     let mut scratch = StickScratch::default();
     let out = pulley_stick_friction(&contacts, &pulley, &v, &mass, dt, &mut force, &mut scratch);
     let brake = out
-        .brake_torque
+        .held_torque
         .expect("a braked pulley reports its brake torque");
     // Holding: the pulley stops this step, I·(0 − ω)/Δt = T + R·Σf + B.
     let total = pulley.applied_torque + out.torque + brake;
@@ -1008,12 +1009,12 @@ fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
 
     // The same with a weak brake: it slides at its capacity, opposing the motion.
     let weak = FrictionPulley {
-        brake_capacity: Some(5.0),
+        prescribed: Some(Prescribed::at_rest(5.0)),
         ..pulley
     };
     let mut force = vec![pushed(0), pushed(1)];
     let out = pulley_stick_friction(&contacts, &weak, &v, &mass, dt, &mut force, &mut scratch);
-    assert_eq!(out.brake_torque, Some(-5.0));
+    assert_eq!(out.held_torque, Some(-5.0));
     // Sticking nodes reach the surface speed of the pulley under T + B + R·Σf.
     let omega_new = weak.omega + dt * (weak.applied_torque - 5.0 + out.torque) / weak.inertia;
     for (k, f) in force.iter().enumerate() {

@@ -9,3 +9,4 @@ mod kernels;
 mod load_resistance;
 mod recorder;
 mod recording_params;
+mod speed_drive;

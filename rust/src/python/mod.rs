@@ -543,10 +543,29 @@ fn recording_dict<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, Py
     Ok(d)
 }
 
+/// A one-dimensional float array handed to Python.
+type Array1<'py> = Bound<'py, PyArray1<f64>>;
+
+/// Belt speed (m/s) and acceleration (m/s²) of a starting curve (given in the dict form of
+/// `beltrs.StartCurve.to_dict()`) at each of `times` (s): two arrays.
+#[pyfunction]
+fn start_curve_eval<'py>(
+    py: Python<'py>,
+    curve: &Bound<'py, PyAny>,
+    times: Vec<f64>,
+) -> PyResult<(Array1<'py>, Array1<'py>)> {
+    guarded(|| {
+        let curve = scene_dict::start_curve_from_dict(curve, "start_curve").map_err(to_py)?;
+        let (speed, accel): (Vec<f64>, Vec<f64>) = times.iter().map(|&t| curve.evaluate(t)).unzip();
+        Ok((PyArray1::from_vec(py, speed), PyArray1::from_vec(py, accel)))
+    })
+}
+
 /// The compiled extension module.
 #[pymodule]
 fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySimulation>()?;
+    m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;

@@ -6,6 +6,7 @@ use crate::scene::{
     BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, LoadSpec, PulleySpec,
     RecordingParams, Scene, SolverParams, Table, TakeupSpec, Wrap,
 };
+use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::unknown_key_rule;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -282,6 +283,51 @@ fn table(r: &mut Reader<'_>, xkey: &str, ykey: &str) -> BeltResult<Option<Table>
     }
 }
 
+/// A number that has no default: an error naming the key when it is absent.
+fn required_f64(r: &mut Reader<'_>, key: &str) -> BeltResult<f64> {
+    r.opt_f64(key)?
+        .ok_or_else(|| BeltError::invalid(r.field(key), "missing", "required"))
+}
+
+/// A starting curve from its table (`[pulleys.drive.start_curve]`).
+fn start_curve_from(mut c: Reader<'_>) -> BeltResult<StartCurve> {
+    let d = StartCurve::default();
+    let shape_name = c.string("shape", d.shape.name())?;
+    let shape = StartShape::from_name(&shape_name).ok_or_else(|| {
+        let hint = match crate::suggest::close_match(&shape_name, StartShape::NAMES) {
+            Some(s) => format!(", did you mean \"{s}\"?"),
+            None => String::new(),
+        };
+        BeltError::invalid(
+            c.field("shape"),
+            format!("{shape_name:?}"),
+            format!(
+                "unknown starting curve{hint} (known: {})",
+                StartShape::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+            ),
+        )
+    })?;
+    let curve = StartCurve {
+        shape,
+        speed: required_f64(&mut c, "speed")?,
+        ramp: required_f64(&mut c, "ramp")?,
+        start: c.f64("start", d.start)?,
+        prestart: c.f64("prestart", d.prestart)?,
+        creep_speed: c.opt_f64("creep_speed")?,
+        creep_ramp: c.opt_f64("creep_ramp")?,
+    };
+    c.finish()?;
+    Ok(curve)
+}
+
+/// A starting curve given on its own (as `beltrs.StartCurve.to_dict()`), named `field` in
+/// messages, checked by the rules of a scene's curve.
+pub fn start_curve_from_dict(value: &Bound<'_, PyAny>, field: &str) -> BeltResult<StartCurve> {
+    let curve = start_curve_from(Reader::new(value, field)?)?;
+    curve.validate(field)?;
+    Ok(curve)
+}
+
 /// Build a [`Scene`] from its dict form.
 pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
     let mut root = Reader::new(value, "")?;
@@ -358,6 +404,11 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
                     speed_factor: table(&mut d, "speed", "speed_factor")?.unwrap_or_default(),
                     viscous: d.f64("viscous", dd.viscous)?,
                     inertia: d.f64("inertia", dd.inertia)?,
+                    start_curve: match d.sub("start_curve")? {
+                        None => None,
+                        Some(c) => Some(start_curve_from(c)?),
+                    },
+                    max_torque: d.f64("max_torque", dd.max_torque)?,
                 };
                 d.finish()?;
                 Some(spec)

@@ -81,6 +81,18 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
                 if !dr.speed_factor.x.is_empty() {
                     table_into(&dd, &dr.speed_factor, "speed", "speed_factor")?;
                 }
+                if let Some(c) = &dr.start_curve {
+                    let cd = PyDict::new(py);
+                    cd.set_item("shape", c.shape.name())?;
+                    cd.set_item("speed", c.speed)?;
+                    cd.set_item("ramp", c.ramp)?;
+                    cd.set_item("start", c.start)?;
+                    cd.set_item("prestart", c.prestart)?;
+                    cd.set_item("creep_speed", c.creep_speed)?;
+                    cd.set_item("creep_ramp", c.creep_ramp)?;
+                    dd.set_item("start_curve", cd)?;
+                }
+                dd.set_item("max_torque", dr.max_torque)?;
                 Some(dd)
             }
         };
