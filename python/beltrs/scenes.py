@@ -274,7 +274,7 @@ def guo_wang_conveyor(
     start_curve: Optional[StartCurve] = None,
     *,
     length: float = GUO_WANG["length"],
-    element_length: float = 0.3,
+    element_length: float = 0.2,
     elements: Optional[int] = None,
     material: float = GUO_WANG["material"],
     f: float = GUO_WANG["f"],
