@@ -11,6 +11,7 @@ __all__ = [
     "belt_coordinate",
     "hustrulid_tangent_tensions",
     "hustrulid_wave_speed",
+    "low_pass",
     "oscillation",
     "probe_run",
     "strand_tension",
@@ -63,6 +64,24 @@ def tension_at(node_position: np.ndarray, tension: np.ndarray, point: Sequence[f
     d2 = ((mid - np.asarray(point, dtype=float)) ** 2).sum(axis=-1)
     nearest = np.argmin(d2, axis=-1)
     return np.take_along_axis(t, np.expand_dims(nearest, -1), axis=-1)[..., 0]
+
+
+def low_pass(signal: np.ndarray, interval: float, cutoff: float) -> np.ndarray:
+    """Zero-phase low-pass filter of a uniformly sampled signal: Fourier components above
+    ``cutoff`` (Hz) are removed; ``interval`` is the sample spacing, s. The signal is
+    mirrored at both ends before the transform so that its ends do not ring.
+
+    Used to read start-up tensions without the node model's chordal ripple: a belt of
+    straight elements running onto a pulley moves at a speed that varies by
+    1 − cos(θ/2) (θ the element's angle on the pulley) at the node-passing frequency v/l,
+    an O(θ²) discretisation artefact (docs/case-g.md)."""
+    x = np.asarray(signal, dtype=float)
+    if not (interval > 0 and cutoff > 0):
+        raise ValueError(f"low_pass: interval = {interval!r} and cutoff = {cutoff!r}: both must be > 0")
+    padded = np.concatenate([x[::-1], x, x[::-1]])
+    spectrum = np.fft.rfft(padded)
+    spectrum[np.fft.rfftfreq(len(padded), interval) > cutoff] = 0.0
+    return np.fft.irfft(spectrum, len(padded))[len(x):2 * len(x)]
 
 
 def probe_run(sim, points: Sequence[Sequence[float]], duration: float, interval: float) -> dict[str, np.ndarray]:
