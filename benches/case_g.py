@@ -24,9 +24,8 @@ from typing import Any
 import numpy as np
 
 import beltrs
-from beltrs import din22101
 from beltrs.analysis import low_pass, probe_run
-from beltrs.scenes import GUO_WANG, guo_wang_conveyor
+from beltrs.scenes import GUO_WANG, guo_wang_conveyor, guo_wang_din
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHAPES = ("harrison", "nordell", "cubic", "linear")
@@ -38,22 +37,13 @@ STEADY_WINDOW = 5.0  # s averaged at the end for the steady state
 STABILISE = {"tolerance": 1e-5, "max_steps": 400_000}
 
 
-def din_reference(length: float, r: float) -> dict[str, float]:
-    """DIN 22101 steady tensions at the two probes for the scene's parameters."""
-    p = GUO_WANG
-    free = length - 2 * r  # strand length resting on idlers (pulley centre to centre less the pulleys)
-    res = din22101.resistances(
-        carry_length=free, return_length=free, belt_mass=p["belt_mass"], material_mass=p["material"],
-        speed=p["speed"], f=p["f"], carry_rotating_mass=p["carry_rotating_mass"] / p["carry_pitch"],
-        return_rotating_mass=p["return_rotating_mass"] / p["return_pitch"], loaded_length=length - 5.0)
-    t = din22101.head_drive_tensions(res, takeup_pull=2 * p["takeup_tension"])
-    g, f = 9.81, p["f"]
-    carry_per_m = f * g * (p["carry_rotating_mass"] / p["carry_pitch"] + p["belt_mass"] + p["material"])
-    return_per_m = f * g * (p["return_rotating_mass"] / p["return_pitch"] + p["belt_mass"])
-    return {
-        "F_U": res.total, "F_H": res.main, "F_bA": res.loading, "T1": t.tight, "T2": t.slack,
-        "T1_probe": t.tight - carry_per_m * PROBE, "T2_probe": t.slack + return_per_m * PROBE,
-    }
+def din_reference(length: float) -> dict[str, float]:
+    """DIN 22101 steady tensions at the drum and at the two probes (`guo_wang_din`)."""
+    din = guo_wang_din(length)
+    t1, t2 = din.at_probes(PROBE)
+    res = din.resistances
+    return {"F_U": res.total, "F_H": res.main, "F_bA": res.loading, "T1": din.tensions.tight,
+            "T2": din.tensions.slack, "T1_probe": t1, "T2_probe": t2}
 
 
 def start(shape: str, ramp: float, prestart: float, length: float, settle: float, **scene_kw: Any) -> dict[str, Any]:
@@ -163,7 +153,7 @@ def main(argv: list[str] | None = None) -> None:
     bare = start("harrison", 10.0, 0.0, length, settle, f=0.0, material=0.0)
     report(bare, "bare (f = 0, no material)")
     save(out, runs + [bare])
-    din = din_reference(length, GUO_WANG["drum_radius"])
+    din = din_reference(length)
     img = out / "img"
     plot([r for r in runs if r["ramp"] == 10.0 and not r["prestart"]], img / "case_g_10s.png",
          f"Case G ({length:g} m): starts in 10 s")

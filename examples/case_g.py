@@ -34,9 +34,8 @@ import pathlib
 import numpy as np
 
 import beltrs
-from beltrs import din22101
 from beltrs.analysis import probe_run
-from beltrs.scenes import GUO_WANG
+from beltrs.scenes import guo_wang_din
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -69,22 +68,16 @@ def main(argv: list[str] | None = None) -> dict[str, float]:
     smooth = np.convolve(t1, np.ones(20) / 20, mode="same")  # 0.1 s running mean
     k = int(np.argmax(t1))
     steady = t >= t[-1] - 5.0
-    p = GUO_WANG
-    free = length - 2 * r
-    res = din22101.resistances(
-        carry_length=free, return_length=free, belt_mass=p["belt_mass"], material_mass=p["material"],
-        speed=p["speed"], f=p["f"], carry_rotating_mass=p["carry_rotating_mass"] / p["carry_pitch"],
-        return_rotating_mass=p["return_rotating_mass"] / p["return_pitch"], loaded_length=length - 5.0)
-    din = din22101.head_drive_tensions(res, takeup_pull=2 * p["takeup_tension"])
+    din = guo_wang_din(length)
     out = {
         "peak": float(t1[k]), "peak_time": float(t[k]), "peak_smooth": float(smooth[20:-20].max()),
         "T1_steady": float(t1[steady].mean()), "T2_steady": float(t2[steady].mean()),
-        "din_T1": din.tight, "din_T2": din.slack, "din_F_U": res.total,
+        "din_T1": din.tensions.tight, "din_T2": din.tensions.slack, "din_F_U": din.resistances.total,
     }
     print(f"{args.shape} start in {args.ramp:g} s (pre-start {args.prestart:g} s): peak T1 {out['peak'] / 1e3:.1f} kN "
           f"at {out['peak_time']:.2f} s ({out['peak_smooth'] / 1e3:.1f} kN as a 0.1 s mean)")
     print(f"steady (last 5 s): T1 {out['T1_steady'] / 1e3:.2f} kN, T2 {out['T2_steady'] / 1e3:.2f} kN; DIN 22101 at "
-          f"the drum T1 {din.tight / 1e3:.2f}, T2 {din.slack / 1e3:.2f}, F_U {res.total / 1e3:.2f} kN "
+          f"the drum T1 {out['din_T1'] / 1e3:.2f}, T2 {out['din_T2'] / 1e3:.2f}, F_U {out['din_F_U'] / 1e3:.2f} kN "
           "(the probes sit 10 m from the drum)")
     return out
 

@@ -7,9 +7,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import din22101
 from beltrs.analysis import probe_run
-from beltrs.scenes import GUO_WANG, guo_wang_conveyor
+from beltrs.scenes import GUO_WANG, guo_wang_conveyor, guo_wang_din
 
 LENGTH = 150.0
 R = GUO_WANG["drum_radius"]
@@ -17,7 +16,6 @@ RAMP = 4.0  # s, Harrison: peak acceleration pi*v/(2T) = 0.785 m/s^2
 SETTLE = 6.0  # s at full speed
 INTERVAL = 0.005  # s
 PROBES = [(LENGTH - 10.0, R), (LENGTH - 10.0, -R)]  # 10 m before / after the head drum
-G = 9.81
 
 
 def start(**kw):
@@ -37,23 +35,6 @@ def bare():
     return start(f=0.0, material=0.0)
 
 
-def per_metre():
-    p = GUO_WANG
-    carry = p["f"] * G * (p["carry_rotating_mass"] / p["carry_pitch"] + p["belt_mass"] + p["material"])
-    ret = p["f"] * G * (p["return_rotating_mass"] / p["return_pitch"] + p["belt_mass"])
-    return carry, ret
-
-
-def din():
-    p = GUO_WANG
-    free = LENGTH - 2 * R
-    res = din22101.resistances(
-        carry_length=free, return_length=free, belt_mass=p["belt_mass"], material_mass=p["material"],
-        speed=p["speed"], f=p["f"], carry_rotating_mass=p["carry_rotating_mass"] / p["carry_pitch"],
-        return_rotating_mass=p["return_rotating_mass"] / p["return_pitch"], loaded_length=LENGTH - 5.0)
-    return res, din22101.head_drive_tensions(res, takeup_pull=2 * p["takeup_tension"])
-
-
 def steady(data):
     t = data["time"]
     window = t >= t[-1] - 4.0  # the last 4 s: ~40 periods of the 10 Hz chordal ripple
@@ -61,19 +42,19 @@ def steady(data):
 
 
 def test_steady_running_matches_din_22101(loaded, bare):
-    res, ten = din()
-    carry, ret = per_metre()
+    din = guo_wang_din(LENGTH)
     t1, t2 = steady(loaded[1])
     b1, b2 = steady(bare[1])
     # Absolute tensions at the probes: the takeup fixes the tail at 50 kN, DIN adds the
     # strands' resistances. 1.5 %: the window mean of a ±10 kN ripple and the model loss below.
-    assert t1 == pytest.approx(ten.tight - carry * 10.0, rel=0.015)
-    assert t2 == pytest.approx(ten.slack + ret * 10.0, rel=0.015)
+    d1, d2 = din.at_probes(10.0)
+    assert t1 == pytest.approx(d1, rel=0.015)
+    assert t2 == pytest.approx(d2, rel=0.015)
     # The peripheral force: what the resistances and the loading add over the bare conveyor
     # (f = 0, no material: the node model's own loss, belt nodes slipping as the polygonal
     # belt lands on the drums, ~0.25 kN here) is DIN's F_U (less the 2 x 10 m outside the
     # probes). 3 %: "a few per cent" of reference-cases.md, with the ripple's window mean.
-    expected = res.total - (carry + ret) * 10.0
+    expected = din.resistances.total - (din.carry_per_metre + din.return_per_metre) * 10.0
     assert (t1 - t2) - (b1 - b2) == pytest.approx(expected, rel=0.03)
     # And the bare loss is small next to the resistances (< 15 % at 150 m; ~1 % at 972 m).
     assert 0 < b1 - b2 < 0.15 * expected
@@ -90,7 +71,7 @@ def test_start_follows_the_rigid_body_law(loaded):
     t = data["time"]
     ramp = t < RAMP
     speed = curve.speed_at(t[ramp])
-    carry, _ = per_metre()
+    carry = guo_wang_din(LENGTH).carry_per_metre
     free = LENGTH - 2 * R - 10.0  # tail pulley to the probe
     # Static part: the tail tension, the idler resistance (sliding from the first instant),
     # accelerating the material arriving at the loading point (m'_L v^2).

@@ -3,11 +3,21 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any, Optional
 
+from . import din22101
 from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 
-__all__ = ["concave_conveyor", "guo_wang_conveyor", "hustrulid_loop", "hustrulid_torque_pulse", "idler_conveyor"]
+__all__ = [
+    "GuoWangStatics",
+    "concave_conveyor",
+    "guo_wang_conveyor",
+    "guo_wang_din",
+    "hustrulid_loop",
+    "hustrulid_torque_pulse",
+    "idler_conveyor",
+]
 
 
 def hustrulid_loop(
@@ -368,3 +378,47 @@ def guo_wang_conveyor(
                  solver=Solver(time_step_fraction=time_step_fraction),
                  recording=Recording(duration=start_curve.prestart + start_curve.ramp + 5.0, interval=0.05,
                                      channels=("tension", "node_position")))
+
+
+@dataclass(frozen=True)
+class GuoWangStatics:
+    """DIN 22101 steady running of :func:`guo_wang_conveyor` (see :mod:`beltrs.din22101`).
+
+    Attributes:
+        resistances: the resistances, N.
+        tensions: tail, slack (T2) and tight (T1) tensions at the drum, N.
+        carry_per_metre: running resistance of the loaded carry strand, N/m.
+        return_per_metre: running resistance of the return strand, N/m.
+    """
+
+    resistances: din22101.Resistances
+    tensions: din22101.HeadDriveTensions
+    carry_per_metre: float
+    return_per_metre: float
+
+    def at_probes(self, distance: float) -> tuple[float, float]:
+        """(T1, T2), N, ``distance`` m from the drum on the carry and the return strand."""
+        return (self.tensions.tight - self.carry_per_metre * distance,
+                self.tensions.slack + self.return_per_metre * distance)
+
+
+def guo_wang_din(length: float = GUO_WANG["length"], *, material: float = GUO_WANG["material"],
+                 f: float = GUO_WANG["f"], takeup_tension: float = GUO_WANG["takeup_tension"],
+                 gravity: float = 9.81) -> GuoWangStatics:
+    """The DIN 22101 static calculation of :func:`guo_wang_conveyor` with the same
+    arguments: idlered lengths = centre distance less the two drum radii, material from 5 m
+    after the tail centre, rotating masses per metre = per idler / pitch."""
+    p = GUO_WANG
+    free = length - 2 * p["drum_radius"]
+    mrc = p["carry_rotating_mass"] / p["carry_pitch"]
+    mrr = p["return_rotating_mass"] / p["return_pitch"]
+    res = din22101.resistances(
+        carry_length=free, return_length=free, belt_mass=p["belt_mass"], material_mass=material,
+        speed=p["speed"], f=f, carry_rotating_mass=mrc, return_rotating_mass=mrr,
+        loaded_length=length - 5.0, gravity=gravity)
+    return GuoWangStatics(
+        resistances=res,
+        tensions=din22101.head_drive_tensions(res, takeup_pull=2 * takeup_tension, gravity=gravity),
+        carry_per_metre=f * gravity * (mrc + p["belt_mass"] + material),
+        return_per_metre=f * gravity * (mrr + p["belt_mass"]),
+    )
