@@ -5,6 +5,7 @@
 //! here changes during a run; the mutable part lives in [`crate::state::State`].
 
 use crate::error::{BeltError, BeltResult};
+use crate::forces;
 use crate::geometry::BeltPath;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
@@ -134,6 +135,12 @@ pub struct Model {
     pub axial_damping: Vec<f64>,
     /// Bending spring at each node, N·m/rad: EI / (mean length of the two elements) (eq. 4.11).
     pub bending_stiffness: Vec<f64>,
+    /// The common stiffness, damping, rest length and node mass when every element and
+    /// node has the same (a uniform belt), else None; the axial pass then reads scalars
+    /// instead of four arrays. Compiled from the arrays above: whatever changes them
+    /// during a run (e.g. node masses that vary) must recompute it with
+    /// [`forces::Uniform::of`].
+    pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
     /// Gravitational acceleration, m/s².
@@ -165,6 +172,26 @@ pub struct Model {
 }
 
 impl Model {
+    /// The axial elements and node weights as the axial pass reads them: Kelvin-Voigt
+    /// elements if the model has the damped stage and `damping` is on, weights if it has a
+    /// gravity stage.
+    pub fn axial_belt(&self, damping: bool) -> forces::AxialBelt<'_> {
+        forces::AxialBelt {
+            stiffness: &self.axial_stiffness,
+            damping: &self.axial_damping,
+            rest_length: &self.rest_length,
+            mass: &self.mass,
+            uniform: self.uniform,
+            damped: damping && self.has_stage(Stage::AxialDamped),
+            tension_only: self.tension_only,
+            gravity: if self.has_stage(Stage::Gravity) {
+                self.gravity
+            } else {
+                0.0
+            },
+        }
+    }
+
     /// Validate the scene and compile it.
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
@@ -309,6 +336,7 @@ impl Model {
             .collect();
 
         let stages = Self::select_stages(scene, &pulleys, &idlers);
+        let uniform = forces::Uniform::of(&axial_stiffness, &axial_damping, &rest_length, &mass);
         let mut model = Model {
             scene: scene.clone(),
             nodes: n,
@@ -318,6 +346,7 @@ impl Model {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            uniform,
             tension_only: belt.tension_only,
             gravity: scene.gravity,
             pulleys,
