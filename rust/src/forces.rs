@@ -350,33 +350,33 @@ fn axial_sweep<I: Iterator<Item = (V2, V2)>>(
     let (t_first, fe_first) = alone(x1 - x0, v1 - v0, k.at(0), c.at(0), l0.at(0));
     tension.set(0, t_first);
     let (mut xa, mut va, mut prev) = (x1, v1, fe_first);
-    // Elements 1..n−2 and nodes 1..n−2 (nodes 2..n−1 taken), two per iteration.
-    let mut items = nodes.by_ref().zip(&force[1..n - 1]).zip(1..n - 1).zip(
-        k.iter_from(1)
-            .zip(c.iter_from(1))
-            .zip(l0.iter_from(1))
-            .zip(mass.iter_from(1)),
-    );
-    while let Some(((((xb, vb), fb), eb), (((kb, cb), l0b), mb))) = items.next() {
-        let Some(((((xc, vc), fc), ec), (((kc, cc), l0c), mc))) = items.next() else {
-            let (t, fe) = alone(xb - xa, vb - va, kb, cb, l0b);
-            tension.set(eb, t);
-            fb.set(node_force(prev, fe, mb, gravity));
-            (xa, va, prev) = (xb, vb, fe);
-            break;
-        };
+    // Elements 1..n−2 and nodes 1..n−2 (nodes 2..n−1 taken), two per iteration (one
+    // loop count, so the loop tests nothing else), then an odd one out.
+    let mut take = || nodes.next().expect("one item per node");
+    let pairs = force[1..n - 1].chunks_exact(2);
+    let odd = pairs.remainder();
+    for (e, pair) in (1..).step_by(2).zip(pairs) {
+        let ((xb, vb), (xc, vc)) = (take(), take());
         let (t, fe) = law(
             [xb - xa, xc - xb],
             [vb - va, vc - vb],
-            [kb, kc],
-            [cb, cc],
-            [l0b, l0c],
+            [k.at(e), k.at(e + 1)],
+            [c.at(e), c.at(e + 1)],
+            [l0.at(e), l0.at(e + 1)],
         );
-        tension.set(eb, t[0]);
-        tension.set(ec, t[1]);
-        fb.set(node_force(prev, fe[0], mb, gravity));
-        fc.set(node_force(fe[0], fe[1], mc, gravity));
+        tension.set(e, t[0]);
+        tension.set(e + 1, t[1]);
+        pair[0].set(node_force(prev, fe[0], mass.at(e), gravity));
+        pair[1].set(node_force(fe[0], fe[1], mass.at(e + 1), gravity));
         (xa, va, prev) = (xc, vc, fe[1]);
+    }
+    if let [f] = odd {
+        let e = n - 2;
+        let (xb, vb) = take();
+        let (t, fe) = alone(xb - xa, vb - va, k.at(e), c.at(e), l0.at(e));
+        tension.set(e, t);
+        f.set(node_force(prev, fe, mass.at(e), gravity));
+        (xa, va, prev) = (xb, vb, fe);
     }
     // The closing element n−1 runs from node n−1 (now in xa) to node 0.
     let (t_last, fe_last) = alone(x0 - xa, v0 - va, k.at(n - 1), c.at(n - 1), l0.at(n - 1));

@@ -324,20 +324,24 @@ impl AllFinite {
 
 /// The nodes as the central-difference update moves them, one per `next`: yields each
 /// node's new (position, velocity) and keeps the [`AllFinite`] flag.
-struct Moving<I> {
-    nodes: I,
+struct Moving<N, M> {
+    nodes: N,
+    inv_mass: M,
     dt: f64,
     finite: AllFinite,
 }
 
-impl<'a, I: Iterator<Item = ((&'a mut V2, &'a mut V2), (&'a Cell<V2>, f64))>> Iterator
-    for Moving<I>
+impl<'a, N, M> Iterator for Moving<N, M>
+where
+    N: Iterator<Item = ((&'a mut V2, &'a mut V2), &'a Cell<V2>)>,
+    M: Iterator<Item = f64>,
 {
     type Item = (V2, V2);
 
     #[inline(always)]
     fn next(&mut self) -> Option<(V2, V2)> {
-        let ((x, v), (f, im)) = self.nodes.next()?;
+        let ((x, v), f) = self.nodes.next()?;
+        let im = self.inv_mass.next()?;
         self.finite.integrate_node(x, v, f.get(), im, self.dt);
         Some((*x, *v))
     }
@@ -739,7 +743,8 @@ impl Simulation {
         tension: &mut [f64],
     ) -> bool {
         let nodes = Moving {
-            nodes: x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass)),
+            nodes: x.iter_mut().zip(v.iter_mut()).zip(f),
+            inv_mass,
             dt,
             finite: AllFinite::new(),
         };
