@@ -7,7 +7,13 @@
 //! target/release/examples/step_loop loop 10000 2000      # frictionless loop, 1e4 nodes
 //! target/release/examples/step_loop case_h 89 20000      # case H with friction
 //! valgrind --tool=callgrind target/release/examples/step_loop loop 10000 200
+//! STEP_LOOP_COMPARE=1 target/release/examples/step_loop loop 10000 1000  # fused vs not
 //! ```
+//!
+//! Environment: `STEP_LOOP_UNFUSED` times the step without the fusion of each integration
+//! with the next axial pass (profiling on, which turns it off), `STEP_LOOP_COMPARE` also
+//! alternates five fused and five unfused repeats in the same process, `STEP_LOOP_PROFILE`
+//! prints the per-stage profile of one more run.
 //!
 //! Scenes: `loop` is the frictionless loop of `benches/numpy_ref.py` (the 1 km conveyor of
 //! `benches/bench_scenes.conveyor` without idlers, friction or drive: EA 60 MN, 25 kg/m,
