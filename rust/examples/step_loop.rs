@@ -7,7 +7,13 @@
 //! target/release/examples/step_loop loop 10000 2000      # frictionless loop, 1e4 nodes
 //! target/release/examples/step_loop case_h 89 20000      # case H with friction
 //! valgrind --tool=callgrind target/release/examples/step_loop loop 10000 200
+//! STEP_LOOP_COMPARE=1 target/release/examples/step_loop loop 10000 1000  # fused vs not
 //! ```
+//!
+//! Environment: `STEP_LOOP_UNFUSED` times the step without the fusion of each integration
+//! with the next axial pass (profiling on, which turns it off), `STEP_LOOP_COMPARE` also
+//! alternates five fused and five unfused repeats in the same process, `STEP_LOOP_PROFILE`
+//! prints the per-stage profile of one more run.
 //!
 //! Scenes: `loop` is the frictionless loop of `benches/numpy_ref.py` (the 1 km conveyor of
 //! `benches/bench_scenes.conveyor` without idlers, friction or drive: EA 60 MN, 25 kg/m,
@@ -104,7 +110,33 @@ fn main() {
             .expect("relaxes");
         sim.set_scene(&scene).expect("same scene");
     }
+    // Profiling times each stage on its own, so it turns the fusion of the integration
+    // with the next axial pass off: STEP_LOOP_UNFUSED measures the step without it.
+    if std::env::var_os("STEP_LOOP_UNFUSED").is_some() {
+        sim.set_profiling(true);
+    }
     sim.step(10).expect("warm-up");
+    // STEP_LOOP_COMPARE: five fused and five unfused repeats alternating in this process
+    // (the same core), for the ratio of the two.
+    if std::env::var_os("STEP_LOOP_COMPARE").is_some() {
+        let mut times = [Vec::new(), Vec::new()];
+        for _ in 0..5 {
+            for (unfused, t) in times.iter_mut().enumerate() {
+                sim.set_profiling(unfused == 1);
+                let t0 = Instant::now();
+                sim.step(steps).expect("steps");
+                t.push(t0.elapsed().as_secs_f64() / (nodes as f64 * steps as f64) * 1e9);
+            }
+        }
+        sim.set_profiling(false);
+        for t in &mut times {
+            t.sort_by(f64::total_cmp);
+        }
+        println!(
+            "fused {:.2} ns per node-step median ({:.2} best), unfused {:.2} ({:.2})",
+            times[0][2], times[0][0], times[1][2], times[1][0]
+        );
+    }
     // Five timed repeats: the shared machine makes single timings noisy; the fastest is the
     // steadier figure.
     let mut walls: Vec<f64> = (0..5)

@@ -5,6 +5,7 @@
 //! here changes during a run; the mutable part lives in [`crate::state::State`].
 
 use crate::error::{BeltError, BeltResult};
+use crate::forces;
 use crate::friction::Prescribed;
 use crate::geometry::BeltPath;
 use crate::loads::LoadModel;
@@ -177,6 +178,12 @@ pub struct Model {
     pub axial_damping: Vec<f64>,
     /// Bending spring at each node, N·m/rad: EI / (mean length of the two elements) (eq. 4.11).
     pub bending_stiffness: Vec<f64>,
+    /// The common stiffness, damping, rest length and node mass when every element and
+    /// node has the same (a uniform belt), else None; the axial pass then reads scalars
+    /// instead of four arrays. Compiled from the arrays above: whatever changes them
+    /// during a run (e.g. node masses that vary) must recompute it with
+    /// [`forces::Uniform::of`].
+    pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
     /// Gravitational acceleration, m/s².
@@ -210,6 +217,26 @@ pub struct Model {
 }
 
 impl Model {
+    /// The axial elements and node weights as the axial pass reads them: Kelvin-Voigt
+    /// elements if the model has the damped stage and `damping` is on, weights if it has a
+    /// gravity stage.
+    pub fn axial_belt<'a>(&'a self, damping: bool, node_mass: &'a [f64]) -> forces::AxialBelt<'a> {
+        forces::AxialBelt {
+            stiffness: &self.axial_stiffness,
+            damping: &self.axial_damping,
+            rest_length: &self.rest_length,
+            mass: node_mass,
+            uniform: self.uniform,
+            damped: damping && self.has_stage(Stage::AxialDamped),
+            tension_only: self.tension_only,
+            gravity: if self.has_stage(Stage::Gravity) {
+                self.gravity
+            } else {
+                0.0
+            },
+        }
+    }
+
     /// Validate the scene and compile it.
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
@@ -357,6 +384,12 @@ impl Model {
         let loads = crate::loads::compile(&scene.loads, &path, l0)?;
 
         let stages = Self::select_stages(scene, &pulleys, &idlers, &loads);
+        // With loads the node masses change during the run: never read them as uniform.
+        let uniform = if loads.is_empty() {
+            forces::Uniform::of(&axial_stiffness, &axial_damping, &rest_length, &mass)
+        } else {
+            None
+        };
         let mut model = Model {
             scene: scene.clone(),
             nodes: n,
@@ -366,6 +399,7 @@ impl Model {
             axial_stiffness,
             axial_damping,
             bending_stiffness,
+            uniform,
             tension_only: belt.tension_only,
             gravity: scene.gravity,
             pulleys,

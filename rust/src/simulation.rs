@@ -10,6 +10,7 @@ use crate::record::{Channels, Energies, Recording};
 use crate::scene::{FrictionModel, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
+use std::cell::Cell;
 use std::time::Instant;
 
 type V2 = Vector2<f64>;
@@ -121,15 +122,6 @@ struct Inertia {
     physical: bool,
 }
 
-/// The common value if every element of `values` is the same, bit for bit.
-fn all_same(values: &[f64]) -> Option<f64> {
-    let first = *values.first()?;
-    values
-        .iter()
-        .all(|v| v.to_bits() == first.to_bits())
-        .then_some(first)
-}
-
 impl Inertia {
     /// The physical masses: `node_mass` (the state's: belt and material).
     fn physical(model: &Model, node_mass: &[f64]) -> Inertia {
@@ -138,7 +130,7 @@ impl Inertia {
             mass: node_mass.to_vec(),
             // With loads the masses change during the run: never take them as uniform.
             same_inv_mass: if model.loads.is_empty() {
-                all_same(&inv_mass)
+                forces::all_same(&inv_mass)
             } else {
                 None
             },
@@ -185,7 +177,7 @@ impl Inertia {
             .collect();
         Inertia {
             mass,
-            same_inv_mass: all_same(&inv_mass),
+            same_inv_mass: forces::all_same(&inv_mass),
             inv_mass,
             takeup_mass,
             physical: false,
@@ -263,6 +255,115 @@ pub struct StabiliseReport {
     pub converged: bool,
     /// Number of times the velocities were zeroed.
     pub resets: u64,
+}
+
+/// The central-difference update of one node, v ← v + Δt·f/m, x ← x + Δt·v, and a
+/// running flag of whether every new position is finite.
+///
+/// The finiteness check is a flag per position, not one running sum (a chain of dependent
+/// additions through every node, which the compiler may not reorder). Testing the new
+/// positions suffices: x + v·Δt with Δt > 0 is finite only if the old position and the new
+/// velocity are finite (or it overflows), so a non-finite force, velocity or position is
+/// caught in the step that produces it.
+///
+/// On x86-64 the update is written with SSE2 (part of the x86-64 baseline, so always
+/// present), one node per 128-bit register: left to itself the compiler vectorises across
+/// nodes and spends most of the loop de-interleaving x and y, which made it about 1.6×
+/// slower (docs/performance.md). The arithmetic is the same operations in the same order as
+/// the portable version, so the result is the same to the last bit.
+#[derive(Clone, Copy)]
+struct AllFinite {
+    #[cfg(target_arch = "x86_64")]
+    mask: std::arch::x86_64::__m128d,
+    #[cfg(not(target_arch = "x86_64"))]
+    finite: bool,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl AllFinite {
+    #[inline(always)]
+    fn new() -> AllFinite {
+        use std::arch::x86_64::{_mm_castsi128_pd, _mm_set1_epi64x};
+        // SAFETY: SSE2 is part of the x86-64 baseline; these only build a register.
+        unsafe {
+            AllFinite {
+                mask: _mm_castsi128_pd(_mm_set1_epi64x(-1)),
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn integrate_node(&mut self, x: &mut V2, v: &mut V2, f: V2, inv_mass: f64, dt: f64) {
+        use std::arch::x86_64::{
+            _mm_add_pd, _mm_and_pd, _mm_castsi128_pd, _mm_cmplt_pd, _mm_loadu_pd, _mm_mul_pd,
+            _mm_set1_epi64x, _mm_set1_pd, _mm_storeu_pd,
+        };
+        // SAFETY: SSE2 is part of the x86-64 baseline, so the intrinsics are available on
+        // every x86-64 target. Each pointer is to the two contiguous f64 of one live
+        // Vector2<f64> (nalgebra stores it as [f64; 2]), borrowed for this call (shared for
+        // f, exclusive for x and v); the unaligned loads and stores need no alignment.
+        unsafe {
+            let magnitude = _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX));
+            let vn = _mm_add_pd(
+                _mm_loadu_pd(v.as_ptr()),
+                _mm_mul_pd(_mm_loadu_pd(f.as_ptr()), _mm_set1_pd(dt * inv_mass)),
+            );
+            _mm_storeu_pd(v.as_mut_ptr(), vn);
+            let xn = _mm_add_pd(_mm_loadu_pd(x.as_ptr()), _mm_mul_pd(vn, _mm_set1_pd(dt)));
+            _mm_storeu_pd(x.as_mut_ptr(), xn);
+            let finite = _mm_cmplt_pd(_mm_and_pd(xn, magnitude), _mm_set1_pd(f64::INFINITY));
+            self.mask = _mm_and_pd(self.mask, finite);
+        }
+    }
+
+    #[inline(always)]
+    fn all(self) -> bool {
+        // SAFETY: SSE2 is part of the x86-64 baseline.
+        unsafe { std::arch::x86_64::_mm_movemask_pd(self.mask) == 0b11 }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl AllFinite {
+    fn new() -> AllFinite {
+        AllFinite { finite: true }
+    }
+
+    #[inline(always)]
+    fn integrate_node(&mut self, x: &mut V2, v: &mut V2, f: V2, inv_mass: f64, dt: f64) {
+        *v += f * (dt * inv_mass);
+        *x += *v * dt;
+        self.finite &= x.x.is_finite() & x.y.is_finite();
+    }
+
+    fn all(self) -> bool {
+        self.finite
+    }
+}
+
+/// The nodes as the central-difference update moves them, one per `next`: yields each
+/// node's new (position, velocity) and keeps the [`AllFinite`] flag.
+struct Moving<N, M> {
+    nodes: N,
+    inv_mass: M,
+    dt: f64,
+    finite: AllFinite,
+}
+
+impl<'a, N, M> Iterator for Moving<N, M>
+where
+    N: Iterator<Item = ((&'a mut V2, &'a mut V2), &'a Cell<V2>)>,
+    M: Iterator<Item = f64>,
+{
+    type Item = (V2, V2);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<(V2, V2)> {
+        let ((x, v), f) = self.nodes.next()?;
+        let im = self.inv_mass.next()?;
+        self.finite.integrate_node(x, v, f.get(), im, self.dt);
+        Some((*x, *v))
+    }
 }
 
 /// Model, state, scratch buffers and the current recording.
@@ -379,6 +480,12 @@ impl Simulation {
 
     /// Evaluate all forces at the current state (thesis eq. 4.57).
     fn evaluate(&mut self, effects: Effects) {
+        self.evaluate_after(effects, false);
+    }
+
+    /// Evaluate the forces; with `axial_done`, the axial pass has run already (fused with
+    /// the last integration, [`Simulation::integrate_then`]) and the other stages add to it.
+    fn evaluate_after(&mut self, effects: Effects, axial_done: bool) {
         let m = &self.model;
         let s = &mut self.state;
         let sc = &mut self.scratch;
@@ -394,11 +501,6 @@ impl Simulation {
         // Every model has an axial stage, which writes all node forces (with the weights
         // when the model has a gravity stage), so the force array needs no reset here.
         debug_assert!(m.has_stage(Stage::Axial) || m.has_stage(Stage::AxialDamped));
-        let gravity = if m.has_stage(Stage::Gravity) {
-            m.gravity
-        } else {
-            0.0
-        };
         sc.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.brake_torque.iter_mut().for_each(|t| *t = 0.0);
         sc.held.iter_mut().for_each(|h| *h = None);
@@ -428,29 +530,17 @@ impl Simulation {
                 // The axial pass writes every node force (no reset pass) and adds the
                 // weights (no gravity pass): see forces::axial and docs/performance.md.
                 Stage::Gravity => {}
-                Stage::AxialDamped if effects.damping => forces::axial_damped(
-                    &s.position,
-                    &s.velocity,
-                    &m.axial_stiffness,
-                    &m.axial_damping,
-                    &m.rest_length,
-                    m.tension_only,
-                    &s.node_mass,
-                    gravity,
-                    &mut sc.tension,
-                    &mut sc.force,
-                ),
+                // Done already when the last integration was fused with this pass.
+                Stage::Axial | Stage::AxialDamped if axial_done => {}
                 // The relaxation runs damped elements undamped (see `Effects::damping`).
-                Stage::Axial | Stage::AxialDamped => forces::axial(
-                    &s.position,
-                    &m.axial_stiffness,
-                    &m.rest_length,
-                    m.tension_only,
-                    &s.node_mass,
-                    gravity,
-                    &mut sc.tension,
-                    &mut sc.force,
-                ),
+                Stage::Axial | Stage::AxialDamped => {
+                    let _ = forces::axial_pass(
+                        &m.axial_belt(effects.damping, &s.node_mass),
+                        s.position.iter().zip(&s.velocity).map(|(&x, &v)| (x, v)),
+                        &mut sc.tension.as_mut_slice(),
+                        Cell::from_mut(sc.force.as_mut_slice()).as_slice_of_cells(),
+                    );
+                }
                 Stage::Bending => forces::bending(&s.position, &m.bending_stiffness, &mut sc.force),
                 Stage::PulleyContact => {
                     for (j, p) in m.pulleys.iter().enumerate() {
@@ -661,15 +751,38 @@ impl Simulation {
 
     /// Central-difference update (thesis eq. 4.59–4.60, 4.62, 4.64–4.65).
     fn integrate(&mut self) -> BeltResult<()> {
+        self.integrate_then(None)
+    }
+
+    /// [`Simulation::integrate`]; with `Some(tensions)`, the next step's axial pass
+    /// ([`forces::axial_pass`], all effects on) is fused into the node loop: each node is
+    /// moved and then used at once for its elements, one sweep over the nodes instead of
+    /// two, the same operations on the same values (so the same bits). The element
+    /// tensions are written only if `tensions`. The caller then runs
+    /// [`Simulation::evaluate_after`] with `axial_done`.
+    fn integrate_then(&mut self, axial: Option<bool>) -> BeltResult<()> {
         let m = &self.model;
         let s = &mut self.state;
-        let sc = &self.scratch;
+        let sc = &mut self.scratch;
         let dt = m.dt;
-        let (x, v, f) = (&mut s.position, &mut s.velocity, &sc.force);
+        let (x, v) = (&mut s.position, &mut s.velocity);
+        let f = Cell::from_mut(sc.force.as_mut_slice()).as_slice_of_cells();
+        let next =
+            axial.map(|tensions| (m.axial_belt(Effects::ALL.damping, &s.node_mass), tensions));
+        let tension = &mut sc.tension;
         let nodes_finite = match self.inertia.same_inv_mass {
-            Some(im) => Self::integrate_nodes(x, v, f, std::iter::repeat(im), dt),
-            None => Self::integrate_nodes(x, v, f, self.inertia.inv_mass.iter().copied(), dt),
+            Some(im) => Self::integrate_nodes(x, v, f, std::iter::repeat(im), dt, next, tension),
+            None => Self::integrate_nodes(
+                x,
+                v,
+                f,
+                self.inertia.inv_mass.iter().copied(),
+                dt,
+                next,
+                tension,
+            ),
         };
+        let sc = &self.scratch;
         let mut check = 0.0;
         for (j, p) in m.pulleys.iter().enumerate() {
             let torque = sc.pulley_torque(j);
@@ -711,68 +824,35 @@ impl Simulation {
         Ok(())
     }
 
-    /// Central differences on the nodes: v ← v + Δt·f/m, x ← x + Δt·v. Returns whether every
-    /// new position is finite.
-    ///
-    /// The finiteness check is folded into this loop as a flag per position, not as one
-    /// running sum (a chain of dependent additions through every node, which the compiler
-    /// may not reorder). Testing the new positions suffices: x + v·Δt with Δt > 0 is finite
-    /// only if the old position and the new velocity are finite (or it overflows), so a
-    /// non-finite force, velocity or position is caught in the step that produces it.
-    ///
-    /// On x86-64 the loop is written with SSE2 (part of the x86-64 baseline, so always
-    /// present), one node per 128-bit register: left to itself the compiler vectorises
-    /// across nodes and spends most of the loop de-interleaving x and y, which made it
-    /// about 1.6× slower (docs/performance.md). The arithmetic is the same operations in the
-    /// same order as the portable loop, so the result is the same to the last bit.
+    /// Central differences on the nodes: v ← v + Δt·f/m, x ← x + Δt·v, and then, with
+    /// `next` = Some((belt, tensions)), the axial pass of the new state on each node as it
+    /// moves ([`Simulation::integrate_then`]). Returns whether every new position is finite.
     #[inline(always)]
     fn integrate_nodes(
         x: &mut [V2],
         v: &mut [V2],
-        f: &[V2],
+        f: &[Cell<V2>],
         inv_mass: impl Iterator<Item = f64>,
         dt: f64,
+        next: Option<(forces::AxialBelt, bool)>,
+        tension: &mut [f64],
     ) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{
-                _mm_add_pd, _mm_and_pd, _mm_castsi128_pd, _mm_cmplt_pd, _mm_loadu_pd,
-                _mm_movemask_pd, _mm_mul_pd, _mm_set1_epi64x, _mm_set1_pd, _mm_storeu_pd,
-            };
-            // SAFETY: SSE2 is part of the x86-64 baseline, so the intrinsics are available on
-            // every x86-64 target. Each pointer is to the two contiguous f64 of one live
-            // Vector2<f64> (nalgebra stores it as [f64; 2]), borrowed for this iteration
-            // (shared for f, exclusive for x and v); the unaligned loads and stores need no
-            // alignment.
-            unsafe {
-                let step = _mm_set1_pd(dt);
-                let infinity = _mm_set1_pd(f64::INFINITY);
-                let magnitude = _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX));
-                let mut finite = _mm_castsi128_pd(_mm_set1_epi64x(-1));
-                for ((x, v), (f, im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass))
-                {
-                    let vn = _mm_add_pd(
-                        _mm_loadu_pd(v.as_ptr()),
-                        _mm_mul_pd(_mm_loadu_pd(f.as_ptr()), _mm_set1_pd(dt * im)),
-                    );
-                    _mm_storeu_pd(v.as_mut_ptr(), vn);
-                    let xn = _mm_add_pd(_mm_loadu_pd(x.as_ptr()), _mm_mul_pd(vn, step));
-                    _mm_storeu_pd(x.as_mut_ptr(), xn);
-                    finite = _mm_and_pd(finite, _mm_cmplt_pd(_mm_and_pd(xn, magnitude), infinity));
-                }
-                _mm_movemask_pd(finite) == 0b11
+        let nodes = Moving {
+            nodes: x.iter_mut().zip(v.iter_mut()).zip(f),
+            inv_mass,
+            dt,
+            finite: AllFinite::new(),
+        };
+        let moved = match next {
+            None => {
+                let mut nodes = nodes;
+                nodes.by_ref().for_each(drop);
+                nodes
             }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            let mut finite = true;
-            for ((x, v), (f, im)) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_mass)) {
-                *v += f * (dt * im);
-                *x += *v * dt;
-                finite &= x.x.is_finite() & x.y.is_finite();
-            }
-            finite
-        }
+            Some((belt, true)) => forces::axial_pass(&belt, nodes, &mut &mut *tension, f),
+            Some((belt, false)) => forces::axial_pass(&belt, nodes, &mut forces::NoTensions, f),
+        };
+        moved.finite.all()
     }
 
     fn locate_non_finite(&self) -> BeltError {
@@ -785,13 +865,15 @@ impl Simulation {
         };
         for i in 0..self.model.nodes {
             let (x, v) = (s.position[i], s.velocity[i]);
+            // No force check: a non-finite force makes the node's new velocity non-finite
+            // (f·Δt/m is infinite or NaN, and so is v + it), so a force was never the first
+            // non-finite quantity found; and after a fused integration the force array
+            // already holds the next step's axial forces.
             let checks = [
                 ("position x", x.x),
                 ("position y", x.y),
                 ("velocity x", v.x),
                 ("velocity y", v.y),
-                ("force x", self.scratch.force[i].x),
-                ("force y", self.scratch.force[i].y),
             ];
             for (q, val) in checks {
                 if !val.is_finite() {
@@ -824,9 +906,30 @@ impl Simulation {
 
     /// Advance `steps` steps without recording.
     pub fn step(&mut self, steps: u64) -> BeltResult<()> {
-        for _ in 0..steps {
-            self.evaluate(Effects::ALL);
-            self.integrate()?;
+        self.steps_with(steps, false, |_| {})
+    }
+
+    /// `steps` steps of: evaluate all forces, `between` (e.g. record), integrate. Unless
+    /// profiling (which times the axial stage on its own), each integration but the last
+    /// is fused with the next step's axial pass ([`Simulation::integrate_then`]): the same
+    /// arithmetic in one sweep over the nodes instead of two. Each call starts with a
+    /// complete evaluation, so nothing carries over between calls (a changed scene or
+    /// state, a relaxation or a checkpoint in between sees the usual forces). Element
+    /// tensions are written only if `tensions`. A scene with material loads is not fused:
+    /// its loads stage changes node masses before the axial pass adds the weights.
+    fn steps_with(
+        &mut self,
+        steps: u64,
+        tensions: bool,
+        mut between: impl FnMut(&mut Self),
+    ) -> BeltResult<()> {
+        let fuse = self.profile.is_none() && self.model.loads.is_empty();
+        let mut axial_done = false;
+        for k in 0..steps {
+            self.evaluate_after(Effects::ALL, axial_done);
+            between(self);
+            axial_done = fuse && k + 1 < steps;
+            self.integrate_then(axial_done.then_some(tensions))?;
         }
         Ok(())
     }
@@ -878,13 +981,10 @@ impl Simulation {
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
     /// blow-up the recording keeps everything sampled before it.
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
-        for _ in 0..steps {
-            self.evaluate(Effects::ALL);
-            self.record_if_due();
-            self.record_counter += 1;
-            self.integrate()?;
-        }
-        Ok(())
+        self.steps_with(steps, true, |sim| {
+            sim.record_if_due();
+            sim.record_counter += 1;
+        })
     }
 
     /// Close a recording: sample the final state if it falls on the recording grid.

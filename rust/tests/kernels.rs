@@ -211,3 +211,97 @@ fn bending_force_is_minus_gradient_on_the_smallest_loops() {
         }
     }
 }
+
+/// The axial pass computes its elements in pairs (one SSE2 square root and division for
+/// two), the first, the last and an odd one out alone, and reads a uniform belt's
+/// parameters as scalars: for odd and even node counts, elastic and damped, with and
+/// without clipping, scalars and arrays give the same forces and tensions as a plain
+/// element-by-element loop, to the last bit (the same operations in the same order).
+#[test]
+fn axial_pass_in_pairs_and_with_scalars_matches_a_plain_loop_bit_for_bit() {
+    use std::cell::Cell;
+    for n in [3, 4, 10, 11] {
+        // Rest length the mean element length: some elements slack, some stretched.
+        let x = ring(n, 0.6);
+        let v: Vec<V2> = (0..n)
+            .map(|i| V2::new((i as f64).sin(), 0.3 * (2.0 * i as f64).cos()))
+            .collect();
+        let l00 = (0..n).map(|e| (x[(e + 1) % n] - x[e]).norm()).sum::<f64>() / n as f64;
+        let (k0, c0, m0, g) = (2e4, 35.0, 12.0, 9.81);
+        let (k, c, l0, mass) = (vec![k0; n], vec![c0; n], vec![l00; n], vec![m0; n]);
+        for damped in [false, true] {
+            for tension_only in [false, true] {
+                // Reference: element by element, then node by node, in the pass's order.
+                let fe_ref: Vec<(f64, V2)> = (0..n)
+                    .map(|e| {
+                        let j = (e + 1) % n;
+                        let d = x[j] - x[e];
+                        let l = (d.x * d.x + d.y * d.y).sqrt();
+                        let stretch = l - l00;
+                        let t = if damped {
+                            let dv = v[j] - v[e];
+                            k0 * stretch + c0 * ((d.x * dv.x + d.y * dv.y) / l)
+                        } else {
+                            k0 * stretch
+                        };
+                        let slack = if damped {
+                            stretch < 0.0 || t < 0.0
+                        } else {
+                            t < 0.0
+                        };
+                        let t = if tension_only && slack { 0.0 } else { t };
+                        (t, d * (t / l))
+                    })
+                    .collect();
+                let f_ref: Vec<V2> = (0..n)
+                    .map(|i| {
+                        let (cur, prev) = (fe_ref[i].1, fe_ref[(i + n - 1) % n].1);
+                        if i == 0 {
+                            V2::new((0.0 + cur.x) - prev.x, ((0.0 - m0 * g) + cur.y) - prev.y)
+                        } else {
+                            V2::new((0.0 - prev.x) + cur.x, ((0.0 - m0 * g) - prev.y) + cur.y)
+                        }
+                    })
+                    .collect();
+                assert!(
+                    !tension_only || fe_ref.iter().any(|(t, _)| *t == 0.0),
+                    "no element was clipped"
+                );
+                for uniform in [None, forces::Uniform::of(&k, &c, &l0, &mass)] {
+                    let belt = forces::AxialBelt {
+                        stiffness: &k,
+                        damping: &c,
+                        rest_length: &l0,
+                        mass: &mass,
+                        uniform,
+                        damped,
+                        tension_only,
+                        gravity: g,
+                    };
+                    let mut f = vec![V2::new(1e9, -3e9); n];
+                    let mut t = vec![f64::NAN; n];
+                    let nodes = x.iter().zip(&v).map(|(&x, &v)| (x, v));
+                    let cells = Cell::from_mut(f.as_mut_slice()).as_slice_of_cells();
+                    let _ = forces::axial_pass(&belt, nodes, &mut t.as_mut_slice(), cells);
+                    let case = format!(
+                        "n {n}, damped {damped}, tension_only {tension_only}, uniform {}",
+                        uniform.is_some()
+                    );
+                    for e in 0..n {
+                        assert_eq!(t[e].to_bits(), fe_ref[e].0.to_bits(), "tension {e}, {case}");
+                        assert_eq!(
+                            f[e].x.to_bits(),
+                            f_ref[e].x.to_bits(),
+                            "force x {e}, {case}"
+                        );
+                        assert_eq!(
+                            f[e].y.to_bits(),
+                            f_ref[e].y.to_bits(),
+                            "force y {e}, {case}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
