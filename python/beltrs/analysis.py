@@ -74,7 +74,8 @@ def low_pass(signal: np.ndarray, interval: float, cutoff: float) -> np.ndarray:
     Used to read start-up tensions without the node model's chordal ripple: a belt of
     straight elements running onto a pulley moves at a speed that varies by
     1 − cos(θ/2) (θ the element's angle on the pulley) at the node-passing frequency v/l,
-    an O(θ²) discretisation artefact (docs/case-g.md)."""
+    a discretisation artefact that fades as the elements shrink (docs/case-g.md,
+    docs/accuracy.md)."""
     x = np.asarray(signal, dtype=float)
     if not (interval > 0 and cutoff > 0):
         raise ValueError(f"low_pass: interval = {interval!r} and cutoff = {cutoff!r}: both must be > 0")
