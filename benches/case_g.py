@@ -242,7 +242,8 @@ def write_page(path: pathlib.Path, runs: list[dict[str, Any]], bare: dict[str, A
     base = runs[0]
     add("## Steady running against DIN 22101")
     add("")
-    add(f"Averages over the last {STEADY_WINDOW:g} s of the first run ({base['shape']}, {base['ramp']:g} s, then "
+    add(f"Averages over the last {STEADY_WINDOW:g} s (about one period of the belt's lightly damped "
+        "0.2 Hz mode, which the start leaves ringing at ±10 kN) of the first run ({base['shape']}, {base['ramp']:g} s, then "
         f"{base['time'][-1] - base['ramp'] - base['prestart']:.0f} s at full speed) against "
         "`beltrs.din22101` with the same resistances (main resistance f = 0.02 on belt, material and "
         "idler rotating masses; material acceleration at loading; no secondary resistances).")
@@ -314,11 +315,13 @@ def paper_comparison(runs: list[dict[str, Any]]) -> str:
     rows += ["", "**Discussion.** The 10 s starts reproduce the paper's peak and its timing. The 30 s starts "
              "lower the peak by about a fifth, as the paper's do, to a level 5–10 % above its 80 kN: our "
              "steady tight-side tension (68 kN, fixed by the assumed 50 kN takeup and DIN's resistances) leaves "
-             "less room below 80 kN than the paper's unknown takeup did. The pre-start lowers the peak only "
-             "slightly here (1–2 kN against the paper's 10 kN): its purpose is to take up the slack of a belt "
-             "sagging at rest, and this belt starts from its static equilibrium under the gravity takeup, "
-             "tensioned everywhere, so there is little slack to take up; the paper does not give its initial "
-             "state. Linear acceleration (a step in acceleration at t = 0) peaks first and leaves the largest "
+             "less room below 80 kN than the paper's unknown takeup did. The pre-start lowers the linear "
+             "start's peak by about as much as the paper reports (10–12 kN), but the smooth curves' by only "
+             "1–3 kN: the paper's reason for it is to take up the slack of a belt sagging at rest, and this "
+             "belt starts from its static equilibrium under the gravity takeup, tensioned everywhere, so there "
+             "is little slack to take up (the paper does not give its initial state); what remains is that "
+             "the linear curve's jump in acceleration starts from a belt already moving. Linear acceleration "
+             "(a step in acceleration at t = 0) peaks first and leaves the largest "
              "oscillation, as in the paper."]
     return "\n".join(rows)
 
