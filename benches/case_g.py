@@ -243,7 +243,8 @@ def write_page(path: pathlib.Path, runs: list[dict[str, Any]], bare: dict[str, A
     add("## Steady running against DIN 22101")
     add("")
     add(f"Averages over the last {STEADY_WINDOW:g} s (about one period of the belt's lightly damped "
-        "0.2 Hz mode, which the start leaves ringing at ±10 kN) of the first run ({base['shape']}, {base['ramp']:g} s, then "
+        "0.2 Hz mode, which the start leaves ringing at ±10 kN) of the first run "
+        f"({base['shape']}, {base['ramp']:g} s, then "
         f"{base['time'][-1] - base['ramp'] - base['prestart']:.0f} s at full speed) against "
         "`beltrs.din22101` with the same resistances (main resistance f = 0.02 on belt, material and "
         "idler rotating masses; material acceleration at loading; no secondary resistances).")
