@@ -39,7 +39,7 @@ from dataclasses import replace
 from typing import Callable
 
 import beltrs
-from beltrs import Belt, Brake, Drive, Friction, Idler, Pulley, Scene, Takeup
+from beltrs import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Scene, StartCurve, Takeup
 
 EFFECTS = [
     "gravity",
@@ -51,6 +51,9 @@ EFFECTS = [
     "idler_friction",
     "takeup",
     "drives",
+    "speed_drive",
+    "loads",
+    "running_resistance",
 ]
 # Stages that an effect adds to the compiled list.
 STAGES = {
@@ -63,8 +66,11 @@ STAGES = {
     "idler_friction": ["idler_friction"],
     "takeup": ["takeups"],
     "drives": ["drives", "brakes"],
+    "speed_drive": ["drives", "speed_drives"],
+    "loads": ["loads"],
+    "running_resistance": ["running_resistance"],
 }
-PREREQUISITES = {"idler_friction": {"idlers"}}
+PREREQUISITES = {"idler_friction": {"idlers"}, "running_resistance": {"idlers"}}
 BASELINE = frozenset({"pulley_contact"})
 PRETENSION = 0.001  # the belt is this much shorter than its path
 
@@ -93,19 +99,30 @@ def case_h(on: frozenset, off: frozenset = frozenset()) -> Scene:
     if "drives" in on:
         upper.drive = Drive.constant(1e4)
         lower.brake = Brake(capacity=[1e3])
+    if "speed_drive" in on:  # replaces the torque drive when both are on
+        upper.drive = Drive(start_curve=StartCurve(speed=1.0, ramp=1.0))
     idlers = []
     if "idlers" in on:
         imu = Friction(0.3) if "idler_friction" in on else (Friction(0.0) if "idler_friction" in off else None)
+        f = 0.02 if "running_resistance" in on else 0.0
         r = 0.0635
         for y in range(10, 100, 9):
-            idlers.append(Idler(center=(5.0 + r, float(y)), friction=imu))
-            idlers.append(Idler(center=(-5.0 - r, float(y)), friction=imu))
+            idlers.append(Idler(center=(5.0 + r, float(y)), friction=imu, resistance=f))
+            idlers.append(Idler(center=(-5.0 - r, float(y)), friction=imu, resistance=f))
     return Scene(
         belt=belt,
         pulleys=[upper, lower],
         idlers=idlers,
         gravity=9.81 if "gravity" in on else 0.0,
+        loads=_loads(on, off, (5.0, 20.0), (5.0, 80.0)),
     )
+
+
+def _loads(on: frozenset, off: frozenset, start: tuple, end: tuple) -> list[Load]:
+    """50 kg/m from ``start`` to ``end`` when on; the same load of zero mass when off."""
+    if "loads" in on:
+        return [Load(mass_per_length=50.0, start=start, end=end)]
+    return [Load(mass_per_length=0.0, start=start, end=end)] if "loads" in off else []
 
 
 def conveyor(on: frozenset, off: frozenset = frozenset(), length: float = 860.0) -> Scene:
@@ -134,20 +151,24 @@ def conveyor(on: frozenset, off: frozenset = frozenset(), length: float = 860.0)
     if "drives" in on:
         head.drive = Drive.constant(2e3)
         tail.brake = Brake(capacity=[50.0])
+    if "speed_drive" in on:  # replaces the torque drive when both are on
+        head.drive = Drive(start_curve=StartCurve(speed=-1.0, ramp=5.0))
     idlers = []
     if "idlers" in on:
         imu = Friction(0.3) if "idler_friction" in on else (Friction(0.0) if "idler_friction" in off else None)
+        f = 0.02 if "running_resistance" in on else 0.0
         # Node order runs counter-clockwise: the bottom strand goes tail -> head (return),
         # the top strand head -> tail (carry). Idlers touch the belt centre line from below.
         x = 1.2
         while x < length - 1.0:
-            idlers.append(Idler(center=(x, radius - r_idler), radius=r_idler, friction=imu))
+            idlers.append(Idler(center=(x, radius - r_idler), radius=r_idler, friction=imu, resistance=f))
             x += 1.2
         x = 1.5
         while x < length - 1.0:
-            idlers.append(Idler(center=(x, -radius - r_idler), radius=r_idler, friction=imu))
+            idlers.append(Idler(center=(x, -radius - r_idler), radius=r_idler, friction=imu, resistance=f))
             x += 3.0
-    return Scene(belt=belt, pulleys=[tail, head], idlers=idlers, gravity=9.81 if "gravity" in on else 0.0)
+    return Scene(belt=belt, pulleys=[tail, head], idlers=idlers, gravity=9.81 if "gravity" in on else 0.0,
+                 loads=_loads(on, off, (5.0, radius), (length - 5.0, radius)))
 
 
 def per_step(sim: beltrs.Simulation, steps: int) -> float:

@@ -381,7 +381,10 @@ impl Model {
                 rotating_mass: d.rotating_mass,
             })
             .collect();
-        let loads = crate::loads::compile(&scene.loads, &path, l0)?;
+        // Validated whole; a load of zero mass is then dropped (it would only cost a stage
+        // and the uniform-mass fast path).
+        let mut loads = crate::loads::compile(&scene.loads, &path, l0)?;
+        loads.retain(|l| l.mass_per_length > 0.0);
 
         let stages = Self::select_stages(scene, &pulleys, &idlers, &loads);
         // With loads the node masses change during the run: never read them as uniform.
