@@ -122,9 +122,10 @@ class Simulation:
         return np.asarray(self._core.node_masses())
 
     def load_zones(self) -> np.ndarray:
-        """Each load's zone now (loads of zero mass are dropped when compiled), shape ``[loads, 3]``: the material coordinates (m of
-        unstretched belt from node 0) of the belt points at the loading and at the discharge
-        point, and the zone's length between them, m (its material is
+        """Each load's zone now, shape ``[loads, 3]`` (loads of zero mass are dropped when
+        the scene is compiled): the material coordinates (m of unstretched belt from node 0)
+        of the belt points at the loading and at the discharge point, and the zone's length
+        between them, m (its material is
         ``mass_per_length`` times that)."""
         return np.asarray(self._core.load_zones())
 
