@@ -142,3 +142,20 @@ def test_idler_weights_and_din_main_resistance():
     print(f"return idlers {n_ret:.0f} N vs {M_BELT * G * lr:.0f} N")
     assert n_carry == pytest.approx((M_BELT + M_LOAD) * G * lc, rel=0.01)
     assert n_ret == pytest.approx(M_BELT * G * lr, rel=0.01)
+
+
+def test_zero_mass_load_costs_nothing():
+    """A load of zero mass is validated but compiled away: no stage, and the run is the same
+    bit for bit as without it (the uniform-mass fast paths stay on)."""
+    empty = replace(loaded(), loads=[Load(mass_per_length=0.0, start=(L - 0.2, R), end=(0.0, R))])
+    none = replace(loaded(), loads=[])
+    a, b = beltrs.Simulation(empty), beltrs.Simulation(none)
+    assert a.stages == b.stages and "loads" not in a.stages
+    assert a.load_zones().shape == (0, 3)
+    a.step(200)
+    b.step(200)
+    np.testing.assert_array_equal(a.state()["node_position"], b.state()["node_position"])
+    # Still validated: a far-away point is refused even at zero mass.
+    far = replace(loaded(), loads=[Load(mass_per_length=0.0, start=(L - 0.2, 50.0), end=(0.0, R))])
+    with pytest.raises(SceneError, match=r"loads\[0\]"):
+        beltrs.Simulation(far)
