@@ -399,22 +399,17 @@ pub fn axial(
     tension: &mut [f64],
     force: &mut [V2],
 ) {
-    let belt = AxialBelt {
-        stiffness: k,
-        damping: k,
-        rest_length: l0,
-        mass,
-        uniform: None,
-        damped: false,
+    let at_rest = vec![V2::zeros(); x.len()];
+    axial_with(
+        x,
+        &at_rest,
+        (k, k, false),
+        l0,
         tension_only,
+        mass,
         gravity,
-    };
-    let nodes = x.iter().map(|&x| (x, V2::zeros()));
-    let _ = axial_pass(
-        &belt,
-        nodes,
-        &mut &mut *tension,
-        Cell::from_mut(force).as_slice_of_cells(),
+        tension,
+        force,
     );
 }
 
@@ -433,13 +428,40 @@ pub fn axial_damped(
     tension: &mut [f64],
     force: &mut [V2],
 ) {
+    axial_with(
+        x,
+        v,
+        (k, c, true),
+        l0,
+        tension_only,
+        mass,
+        gravity,
+        tension,
+        force,
+    );
+}
+
+/// [`axial_pass`] on arrays: `springs` = (stiffness, damping, damped).
+#[allow(clippy::too_many_arguments)]
+fn axial_with(
+    x: &[V2],
+    v: &[V2],
+    springs: (&[f64], &[f64], bool),
+    l0: &[f64],
+    tension_only: bool,
+    mass: &[f64],
+    gravity: f64,
+    tension: &mut [f64],
+    force: &mut [V2],
+) {
+    let (stiffness, damping, damped) = springs;
     let belt = AxialBelt {
-        stiffness: k,
-        damping: c,
+        stiffness,
+        damping,
         rest_length: l0,
         mass,
         uniform: None,
-        damped: true,
+        damped,
         tension_only,
         gravity,
     };

@@ -257,6 +257,17 @@ pub struct StabiliseReport {
     pub resets: u64,
 }
 
+impl StabiliseReport {
+    /// Continue this report with a later relaxation `r`: steps and resets add up, the
+    /// residual and the verdict are the later one's.
+    fn then(&mut self, r: StabiliseReport) {
+        self.steps += r.steps;
+        self.resets += r.resets;
+        self.residual = r.residual;
+        self.converged = r.converged;
+    }
+}
+
 /// The central-difference update of one node, v ← v + Δt·f/m, x ← x + Δt·v, and a
 /// running flag of whether every new position is finite.
 ///
@@ -1204,10 +1215,7 @@ impl Simulation {
                     max_steps: remaining,
                     ..*options
                 })?;
-                total.steps += r.steps;
-                total.resets += r.resets;
-                total.residual = r.residual;
-                total.converged = r.converged;
+                total.then(r);
             }
         }
         Ok(total)
@@ -1235,10 +1243,7 @@ impl Simulation {
                 max_steps: options.max_steps - total.steps,
                 ..*options
             })?;
-            total.steps += r.steps;
-            total.resets += r.resets;
-            total.residual = r.residual;
-            total.converged = r.converged;
+            total.then(r);
             if !r.converged {
                 break;
             }

@@ -919,18 +919,23 @@ fn idler_stick_force_brings_contact_point_to_roll_speed() {
     }
 }
 
-/// A window whose run of nodes leaves the pulley is re-found in the same call: the belt
-/// that touches elsewhere in that step is not missed for one step.
-#[test]
-fn emptied_window_rescans_in_the_same_step() {
-    let body = PulleyBody {
+/// A pulley of radius 1 m at the origin, at rest (the contact-window tests).
+fn unit_pulley() -> PulleyBody {
+    PulleyBody {
         center: V2::zeros(),
         center_velocity: V2::zeros(),
         radius: 1.0,
         stiffness: 1.0e7,
         damping: 0.0,
         margin: 0.05,
-    };
+    }
+}
+
+/// A window whose run of nodes leaves the pulley is re-found in the same call: the belt
+/// that touches elsewhere in that step is not missed for one step.
+#[test]
+fn emptied_window_rescans_in_the_same_step() {
+    let body = unit_pulley();
     let n = 40;
     let far = |i: usize| V2::new(10.0 + i as f64, 10.0);
     let mut x: Vec<V2> = (0..n).map(far).collect();
@@ -1034,14 +1039,7 @@ fn braked_pulley_holds_the_belt_or_slides_at_capacity() {
 /// window of the first run; the periodic full scan widens the window to take it in.
 #[test]
 fn full_scan_catches_a_second_run_of_belt() {
-    let body = PulleyBody {
-        center: V2::zeros(),
-        center_velocity: V2::zeros(),
-        radius: 1.0,
-        stiffness: 1.0e7,
-        damping: 0.0,
-        margin: 0.05,
-    };
+    let body = unit_pulley();
     let n = 40;
     let mut x: Vec<V2> = (0..n).map(|i| V2::new(10.0 + i as f64, 10.0)).collect();
     for (k, i) in (5..8).enumerate() {

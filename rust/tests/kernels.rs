@@ -131,16 +131,24 @@ fn bending_force_is_minus_gradient_of_bending_energy() {
     let x = ring(9, 0.4);
     let n = x.len();
     let kt: Vec<f64> = (0..n).map(|j| 50.0 + 3.0 * j as f64).collect();
-    let mut f = vec![V2::zeros(); n];
-    forces::bending(&x, &kt, &mut f);
-    let energy = |y: &[V2]| bending_energy(y, &kt);
+    assert_bending_is_minus_gradient(&x, &kt, V2::zeros(), "ring");
+}
+
+/// Run the bending pass on forces that held `initial` and check what it added against the
+/// finite-difference gradient of the bending energy (h = 1e-6 central differences on
+/// O(100) N forces: 1e-5 relative).
+fn assert_bending_is_minus_gradient(x: &[V2], kt: &[f64], initial: V2, what: &str) {
+    let n = x.len();
+    let mut f = vec![initial; n];
+    forces::bending(x, kt, &mut f);
+    let energy = |y: &[V2]| bending_energy(y, kt);
     for i in 0..n {
         for c in 0..2 {
-            let g = gradient(&x, i, c, &energy);
+            let g = gradient(x, i, c, &energy);
+            let added = f[i][c] - initial[c];
             assert!(
-                (f[i][c] + g).abs() < 1e-5 * (1.0 + g.abs()),
-                "node {i} comp {c}: {} vs {}",
-                f[i][c],
+                (added + g).abs() < 1e-5 * (1.0 + g.abs()),
+                "{what} node {i} comp {c}: {added} vs {}",
                 -g
             );
         }
@@ -170,21 +178,7 @@ fn bending_force_is_minus_gradient_across_small_and_sharp_kinks() {
     assert!(angles.iter().any(|a| a.abs() < 0.2), "{angles:?}");
     assert!(angles.iter().any(|a| a.abs() > 2.0), "{angles:?}");
     let kt: Vec<f64> = (0..n).map(|j| 20.0 + 3.0 * j as f64).collect();
-    let mut f = vec![V2::zeros(); n];
-    forces::bending(&x, &kt, &mut f);
-    let energy = |y: &[V2]| bending_energy(y, &kt);
-    for i in 0..n {
-        for c in 0..2 {
-            let g = gradient(&x, i, c, &energy);
-            // Same tolerance as above: h = 1e-6 central differences on O(100) N forces.
-            assert!(
-                (f[i][c] + g).abs() < 1e-5 * (1.0 + g.abs()),
-                "node {i} comp {c}: {} vs {}",
-                f[i][c],
-                -g
-            );
-        }
-    }
+    assert_bending_is_minus_gradient(&x, &kt, V2::zeros(), "polyline");
 }
 
 /// The bending pass treats the first, the last two and the middle nodes differently (its
@@ -194,21 +188,8 @@ fn bending_force_is_minus_gradient_on_the_smallest_loops() {
     for n in 3..=6 {
         let x = ring(n, 0.2);
         let kt: Vec<f64> = (0..n).map(|j| 40.0 + 5.0 * j as f64).collect();
-        let mut f = vec![V2::new(0.25, -0.5); n];
-        forces::bending(&x, &kt, &mut f);
-        let energy = |y: &[V2]| bending_energy(y, &kt);
-        for i in 0..n {
-            for c in 0..2 {
-                let g = gradient(&x, i, c, &energy);
-                // Bending adds to what `f` held; same tolerance as above.
-                let added = f[i][c] - [0.25, -0.5][c];
-                assert!(
-                    (added + g).abs() < 1e-5 * (1.0 + g.abs()),
-                    "n {n} node {i} comp {c}: {added} vs {}",
-                    -g
-                );
-            }
-        }
+        // Bending adds to what the forces held.
+        assert_bending_is_minus_gradient(&x, &kt, V2::new(0.25, -0.5), &format!("n {n}"));
     }
 }
 

@@ -8,6 +8,13 @@ use beltrs::scene::{
 use beltrs::{BeltError, Simulation, StabiliseOptions, Stage, StartCurve, StartShape};
 use std::f64::consts::PI;
 
+/// Record only the small per-pulley arrays (no tensions, positions or velocities).
+const PER_PULLEY_ONLY: Channels = Channels {
+    tension: false,
+    node_position: false,
+    node_velocity: false,
+};
+
 // ---------------------------------------------------------------------------------------
 // 1. The curves
 // ---------------------------------------------------------------------------------------
@@ -396,15 +403,7 @@ fn drive_follows_the_curve_and_supplies_inertia_plus_belt_torque() {
         let c = the_curve(&sim, 0);
         let dt = sim.model.dt;
         let steps = (1.3 / dt) as u64;
-        sim.begin_recording(
-            Channels {
-                tension: false,
-                node_position: false,
-                node_velocity: false,
-            },
-            1,
-            usize::MAX,
-        );
+        sim.begin_recording(PER_PULLEY_ONLY, 1, usize::MAX);
         let mut peak_belt = 0.0f64;
         for _ in 0..steps {
             let t = sim.state.time;
@@ -463,15 +462,7 @@ fn low_torque_limit_lags_then_catches_up() {
     let mut sim = relaxed(&loop_scene(StartShape::Harrison, limit));
     let c = the_curve(&sim, 0);
     let dt = sim.model.dt;
-    sim.begin_recording(
-        Channels {
-            tension: false,
-            node_position: false,
-            node_velocity: false,
-        },
-        1,
-        usize::MAX,
-    );
+    sim.begin_recording(PER_PULLEY_ONLY, 1, usize::MAX);
     let steps = (3.0 / dt) as u64;
     let (mut at_limit, mut max_lag, mut last_lag) = (0u64, 0.0f64, 0.0);
     let (mut late, mut late_held, mut late_speed) = (0u64, 0u64, 0.0);
