@@ -93,8 +93,8 @@ G_RAW: dict[tuple[int, float], float] = {}  # (nodes, dt) -> raw peak, filled by
 
 
 def case_g_scene(**kw: Any) -> beltrs.Scene:
-    curve = beltrs.StartCurve(shape="harrison", speed=2.0, ramp=10.0)
-    return beltrs.scenes.guo_wang_conveyor(curve, length=G_LENGTH, **kw)
+    """The shortened conveyor with its default start (Harrison, 10 s to 2 m/s)."""
+    return beltrs.scenes.guo_wang_conveyor(length=G_LENGTH, **kw)
 
 
 def case_g_peak() -> study.Quantity:

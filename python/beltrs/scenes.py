@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from . import din22101
@@ -337,8 +337,6 @@ def guo_wang_conveyor(
         takeup_tension: tension per strand at the tail, N. Default 50 kN.
         time_step_fraction: of the stability limit. Default 0.5.
     """
-    from dataclasses import replace
-
     p = GUO_WANG
     if start_curve is None:
         start_curve = StartCurve(shape="harrison", speed=p["speed"], ramp=10.0)
