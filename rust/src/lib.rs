@@ -13,10 +13,11 @@
 
 #![warn(missing_docs)]
 
+pub mod belt;
 pub mod checkpoint;
 pub mod contact;
+pub mod drives;
 pub mod error;
-pub mod forces;
 pub mod friction;
 pub mod geometry;
 pub mod loads;
@@ -25,7 +26,6 @@ pub mod presets;
 pub mod record;
 pub mod scene;
 pub mod simulation;
-pub mod start_curve;
 pub mod state;
 pub mod suggest;
 
@@ -36,4 +36,6 @@ pub use error::{BeltError, BeltResult};
 pub use model::{Model, Stage};
 pub use scene::Scene;
 pub use simulation::{Relaxation, Simulation, StabiliseOptions, StabiliseReport};
+pub use belt::node as forces;
+pub use drives::start_curve;
 pub use start_curve::{StartCurve, StartShape};

@@ -1,0 +1,4 @@
+//! Drives: torque drives, speed-controlled drives following a starting curve, brakes and
+//! gravity takeups.
+
+pub mod start_curve;
