@@ -57,14 +57,14 @@ EFFECTS = [
 ]
 # Stages that an effect adds to the compiled list.
 STAGES = {
-    "gravity": ["gravity"],
+    "gravity": [],  # folded into the axial pass: no stage of its own
     "bending": ["bending"],
     "damping": ["axial_damped"],  # replaces "axial"; the increment is axial_damped - axial
     "pulley_contact": ["pulley_contact"],
     "pulley_friction": ["pulley_friction"],
     "idlers": ["idler_contact"],
     "idler_friction": ["idler_friction"],
-    "takeup": ["takeups"],
+    "takeup": [],  # moved by the integrator: no stage of its own
     "drives": ["drives", "brakes"],
     "speed_drive": ["drives", "speed_drives"],
     "loads": ["loads"],

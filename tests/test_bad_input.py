@@ -184,7 +184,7 @@ def three_errors(d: dict) -> list[str]:
 def test_full_scene_is_valid():
     # The corruptions below start from a scene that compiles, so each error is theirs.
     sim = beltrs.Simulation(full_scene())
-    assert {"drives", "brakes", "takeups", "pulley_friction", "idler_friction", "axial_damped"} <= set(sim.stages)
+    assert {"drives", "brakes", "pulley_friction", "idler_friction", "axial_damped"} <= set(sim.stages)
 
 
 # None-valued keys of full_scene(): set to a number and corrupted too.

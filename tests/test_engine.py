@@ -27,7 +27,9 @@ def test_energy_is_conserved_without_damping_friction_or_drive():
     sim.stabilise()
     sim.set_counterweight(1, 33_000.0)
     steps = 100_000
-    res = sim.run(steps * sim.dt, record_every=500, tension=False, node_position=False, node_velocity=False)
+    res = sim.run(
+        steps * sim.dt, record_every=500, tension=False, node_position=False, node_velocity=False, energy=True
+    )
     total = res.energy_of("total")
     kinetic = res.energy_of("kinetic")
     drift = np.max(np.abs(total - total[0]))
@@ -40,7 +42,7 @@ def test_energy_is_conserved_without_damping_friction_or_drive():
 
 def test_run_records_shapes_and_units():
     sim = beltrs.Simulation(hustrulid_loop())
-    res = sim.run(100 * sim.dt, record_every=10)
+    res = sim.run(100 * sim.dt, record_every=10, energy=True)
     n, e = len(res), sim.nodes
     assert n == 11
     assert res.tension.shape == (n, e)

@@ -46,7 +46,7 @@ def test_stiff_contact_rests_without_chatter(stiffness):
     report = sim.stabilise()
     assert report["converged"]
     steps = 5000
-    res = sim.run(steps * sim.dt, record_every=50)
+    res = sim.run(steps * sim.dt, record_every=50, energy=True)
     # At static equilibrium every node is at rest: 1e-3 m/s is the bound; a residual
     # of 1e-7 of the largest tension moves the slow takeup mode by ~1e-5 m/s at most.
     assert max_speed(res) < 1e-3
@@ -145,7 +145,7 @@ def test_stick_slip_starts_at_the_capstan_limit_and_stops(mu_static, mu_kinetic)
     ramp = 3.0  # s up to 1.3·m_slip, 3 s down to zero, then 0.9 s at rest
     sim = beltrs.Simulation(capstan_rig(mu_static, mu_kinetic, [0.0, ramp, 2 * ramp], [0.0, 1.3 * m_slip, 0.0]))
     sim.stabilise()
-    res = sim.run(2.3 * ramp, record_every=20)
+    res = sim.run(2.3 * ramp, record_every=20, energy=True)
     omega = res.pulley_speed[:, 0]
     t12 = strand_tensions_at_drive(res)
     ratio = t12.max(axis=1) / t12.min(axis=1)
@@ -207,7 +207,7 @@ def test_slack_belt_festoons_without_blowing_up(tension_only):
     assert sim.tensions().min() > 5e3
     sim.set_friction(0, Friction(static=0.4, kinetic=0.35))
     sim.set_drive(0, Drive.pulse(-3e5, 2.0))
-    res = sim.run(6.0, record_every=50)
+    res = sim.run(6.0, record_every=50, energy=True)
     t = res.tension
     x = res.node_position
     chord = np.linalg.norm(np.roll(x, -1, axis=1) - x, axis=2)
@@ -240,7 +240,7 @@ def test_impulsive_torque(torque, duration):
     sim = beltrs.Simulation(beltrs.scenes.hustrulid_loop(89, friction=Friction(static=mu_s, kinetic=mu_k)))
     sim.stabilise()
     sim.set_drive(0, Drive.pulse(torque, duration, start=sim.time))
-    res = sim.run(3.6, record_every=20)
+    res = sim.run(3.6, record_every=20, energy=True)
     assert_energy_bounded(res)
     # Coulomb's law holds at every sample: the belt friction torque on the drive never
     # exceeds R·µs·ΣN (each node is held to µs of its own normal force).
@@ -291,7 +291,7 @@ def test_brake_to_rest_holds_without_jitter():
     # once the pulley stops the brake must hold it exactly, whatever the belt does.
     step = [0.0, 3.0, 3.0 + 1e-9]
     sim = running_case_h(Drive(time=step, torque=[2e5, 2e5, 0.0]), Brake(time=step, capacity=[0.0, 0.0, 3e6]))
-    res = sim.run(9.0, record_every=10)
+    res = sim.run(9.0, record_every=10, energy=True)
     omega = res.pulley_speed[:, 0]
     assert omega.max() > 0.15  # it was running (surface speed > 0.75 m/s)
     stopped = (res.time > 3.0) & (omega == 0.0)
@@ -320,7 +320,7 @@ def test_reversing_drive_passes_through_zero_without_chatter():
     # +200 kN·m for 3 s, then −200 kN·m: the pulley and belt stop and run backwards.
     step = [0.0, 3.0, 3.0 + 1e-9]
     sim = running_case_h(Drive(time=step, torque=[2e5, 2e5, -2e5]))
-    res = sim.run(8.0, record_every=1)
+    res = sim.run(8.0, record_every=1, energy=True)
     omega = res.pulley_speed[:, 0]
     assert omega.max() > 0.5 and omega[-1] < -0.5
     # The speed crosses zero a few times while the elastic loop rings (its slowest mode,
@@ -346,7 +346,7 @@ def test_friction_at_rest_holds_a_load(load, holds):
     scene.pulleys[1].drive = Drive(time=[0.0, 2.0], torque=[0.0, load])
     sim = beltrs.Simulation(scene)
     sim.stabilise()
-    res = sim.run(12.0, record_every=10)
+    res = sim.run(12.0, record_every=10, energy=True)
     assert np.all(res.pulley_speed[:, 0] == 0.0)  # the brake holds the upper pulley
     k = int(np.searchsorted(res.time, 4.0))
     upper = arc_nodes(res, k, 0)
@@ -421,7 +421,7 @@ def test_belt_lifts_off_a_concave_curve_in_a_fast_start_and_lands_back():
     scene = beltrs.scenes.concave_conveyor(drive=drive, curve_radius=radius_c)
     sim = beltrs.Simulation(scene)
     sim.stabilise()
-    res = sim.run(4.0, record_interval=0.005)
+    res = sim.run(4.0, record_interval=0.005, energy=True)
     centres = np.array([d.center for d in scene.idlers])
     carry = centres[:, 1] > 0.5
     half = radius_c * np.tan(np.radians(5.0) / 2)  # tangent length of the curve
@@ -503,7 +503,7 @@ def test_small_idlers_beside_large_and_small_pulleys():
     length = sim.node_mass[0] / 15.0
     assert length == pytest.approx(0.5 * np.pi / 6, rel=0.05)
     sim.stabilise()
-    res = sim.run(4.0, record_interval=0.01)
+    res = sim.run(4.0, record_interval=0.01, energy=True)
     # At rest every carry roll carries the belt; running (2 m/s at the drum) the belt wraps
     # both pulleys and stays finite with bounded energy.
     assert np.all(res.idler_force[0] > 0)
@@ -535,7 +535,7 @@ def test_element_lengths_from_centimetres_to_metres():
         return 2.0 / omega * (np.sqrt(1 + zeta**2) - zeta)
 
     assert fine.dt_limit / coarse.dt_limit == pytest.approx(limit(l_fine) / limit(l_coarse), rel=0.01)
-    res = fine.run(200 * fine.dt, record_every=50)
+    res = fine.run(200 * fine.dt, record_every=50, energy=True)
     assert np.all(np.isfinite(res.node_position))
 
 
@@ -558,7 +558,7 @@ def test_long_undamped_run_conserves_energy(nodes):
     # 10⁵ steps with no damping, friction or drive (the 10⁴ nodes are marked slow,
     # ~1.5 min; CI runs both). The counterweight step sets the loop swinging at 0.28 Hz.
     sim = counterweight_step(nodes, 0.0)
-    res = sim.run(100_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False)
+    res = sim.run(100_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True)
     assert res.time[-1] == pytest.approx(100_000 * sim.dt, rel=1e-9)
     e = res.energy
     total = e[:, res.energy_columns.index("total")]
@@ -573,7 +573,7 @@ def test_long_damped_run_loses_energy_monotonically():
     # The same with 10 % axial damping: with nothing driving, the total energy sampled every
     # 100 steps never rises (not even by the staggered-grid offset: damping outweighs it).
     sim = counterweight_step(2000, 0.1)
-    res = sim.run(20_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False)
+    res = sim.run(20_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True)
     total = res.energy[:, res.energy_columns.index("total")]
     assert np.all(np.diff(total) < 0)
 
@@ -634,7 +634,7 @@ def test_valid_scenes_are_stable_or_refused_up_front(scene):
         return
     if sim.nodes > 800:  # keep the example cheap; the scene itself was valid
         return
-    res = sim.run(10_000 * sim.dt, record_every=100)
+    res = sim.run(10_000 * sim.dt, record_every=100, energy=True)
     assert np.all(np.isfinite(res.node_position)) and np.all(np.isfinite(res.energy))
     # Bounded energy: released from its unstretched placement the belt drops onto its
     # pulleys, and each penalty impact gives back the contact spring's energy with an O(Δt)
@@ -674,6 +674,6 @@ def test_slack_loop_folding_onto_a_pulley_gains_no_energy():
         max_element_angle=0.99,
     )
     sim = beltrs.Simulation(Scene(belt=belt, pulleys=pulleys, gravity=0.0))
-    res = sim.run(10_000 * sim.dt, record_every=10)
+    res = sim.run(10_000 * sim.dt, record_every=10, energy=True)
     total = res.energy[:, res.energy_columns.index("total")]
     assert total.max() <= 1.01 * total[0]

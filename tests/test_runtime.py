@@ -301,6 +301,6 @@ def test_periodic_checkpoints_during_a_run(tmp_path):
     sim.run(20_000 * sim.dt, record_every=1000, progress=False, checkpoint=path, checkpoint_interval=0.0)
     resumed = beltrs.Simulation.load_checkpoint(path)
     assert resumed.state()["step"] == 20_000
-    a = sim.run(500 * sim.dt, record_every=7, progress=False)
-    b = resumed.run(500 * sim.dt, record_every=7, progress=False)
+    a = sim.run(500 * sim.dt, record_every=7, progress=False, energy=True)
+    b = resumed.run(500 * sim.dt, record_every=7, progress=False, energy=True)
     assert np.array_equal(a.node_velocity, b.node_velocity) and np.array_equal(a.energy, b.energy)

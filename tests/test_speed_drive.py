@@ -146,7 +146,7 @@ def test_checkpoint_resume_bit_for_bit(tmp_path):
     a.save_checkpoint(path)
     b = beltrs.Simulation.load_checkpoint(path)
     assert b.scene == scene
-    ra, rb = a.run(0.5, record_every=3), b.run(0.5, record_every=3)
+    ra, rb = a.run(0.5, record_every=3, energy=True), b.run(0.5, record_every=3, energy=True)
     assert np.any(ra.drive_torque[:, 0] == 300.0)  # the limit and the hold both occur
     for name in ("drive_torque", "pulley_speed", "tension", "energy"):
         assert np.array_equal(getattr(ra, name), getattr(rb, name)), name
@@ -281,7 +281,7 @@ def test_slow_start_of_a_stiff_belt_follows_the_rigid_body_law():
     scene = loop(curve, axial_stiffness=1e7, tail_viscous=b)
     sim = beltrs.Simulation(scene)
     assert sim.stabilise()["converged"]
-    res = sim.run(curve.end + 0.6, record_every=1, tension=False, node_position=False, node_velocity=False)
+    res = sim.run(curve.end + 0.6, record_every=1, tension=False, node_position=False, node_velocity=False, energy=True)
     m_eq = float(np.sum(sim.node_mass)) + 2 * INERTIA / RADIUS**2
     v, a = curve.evaluate(res.time)
     rigid = RADIUS * (m_eq * a + b * v / RADIUS**2)

@@ -2,12 +2,12 @@
 
 Compiling a scene (validating it, placing the belt on its path, estimating the stable time
 step and choosing the stages it needs) is done by the engine once, in
-``rust/src/model.rs``. :func:`compile` and :attr:`beltrs.Simulation.model` give a snapshot
+``rust/src/model/``. :func:`compile` and :attr:`beltrs.Simulation.model` give a snapshot
 of the result; nothing here recomputes it.
 
 >>> model = beltrs.compile(beltrs.scenes.hustrulid_loop())
 >>> model.stages
-('gravity', 'axial', 'bending', 'pulley_contact', 'takeups')
+('axial', 'bending', 'pulley_contact')
 """
 
 from __future__ import annotations
@@ -35,15 +35,17 @@ class Model:
 
     Attributes:
         scene: the scene it was compiled from.
-        stages: the stages one step runs, in order (``"gravity"``, ``"axial"`` or
+        stages: the stages one step runs, in order (``"loads"``, ``"axial"`` or
             ``"axial_damped"``, ``"bending"``, ``"pulley_contact"``, ``"idler_contact"``,
-            ``"drives"``, ``"pulley_friction"``, ``"idler_friction"``, ``"brakes"``,
-            ``"takeups"``). An effect the scene does not use is absent and costs nothing:
-            no ``gravity`` when g = 0, ``axial`` instead of ``axial_damped`` when the
-            damping ratio is 0, no ``bending`` when EI = 0, no ``pulley_contact`` when every
-            pulley's contact stiffness is 0, no ``idler_contact`` without idlers, no
-            friction stage when every µs is 0, no ``drives``, ``brakes`` or ``takeups``
-            without them (``docs/effects.md``).
+            ``"running_resistance"``, ``"drives"``, ``"bearing_drag"``,
+            ``"pulley_friction"``, ``"idler_friction"``, ``"speed_drives"``, ``"brakes"``).
+            An effect the scene does not use is absent and costs nothing: ``axial``
+            instead of ``axial_damped`` when the damping ratio is 0, no ``bending`` when
+            EI = 0, no ``pulley_contact`` when every pulley's contact stiffness is 0, no
+            ``idler_contact`` without idlers, no friction stage when every µs is 0, no
+            ``drives``, ``bearing_drag`` or ``brakes`` without them (``docs/effects.md``).
+            The node weights (gravity) are part of the axial pass, and takeups move with
+            the integrator: neither is a stage.
         dt: time step in use, s.
         dt_limit: estimated explicit stability limit of the time step, s.
         dt_cause: the stiffest term, which sets ``dt_limit``.

@@ -38,8 +38,9 @@ class Result:
         slipping_nodes: ``[n, P]`` of those, nodes slipping.
         idler_force: ``[n, I]`` idler normal force, N.
         idler_speed: ``[n, I]`` idler angular speed, rad/s.
-        energy: ``[n, 7]`` J; columns in ``energy_columns``: kinetic, strain, bending,
-            gravity, contact, total (sum of the first five), drive_work.
+        energy: ``[n, 7]`` J, or None unless the run asked for it (``energy=True``);
+            columns in ``energy_columns``: kinetic, strain, bending, gravity, contact, total
+            (sum of the first five), drive_work.
         dt: time step, s.
         stages: compiled stages.
         wall_time: wall-clock seconds of the run.
@@ -67,7 +68,7 @@ class Result:
     slipping_nodes: np.ndarray
     idler_force: np.ndarray
     idler_speed: np.ndarray
-    energy: np.ndarray
+    energy: Optional[np.ndarray]
     energy_columns: list[str]
     dt: float = 0.0
     stages: list[str] = field(default_factory=list)
@@ -96,13 +97,24 @@ class Result:
             slipping_nodes=rec["slipping_nodes"],
             idler_force=rec["idler_force"],
             idler_speed=rec["idler_speed"],
-            energy=rec["energy"],
+            energy=rec.get("energy"),
             energy_columns=list(rec["energy_columns"]),
             **meta,
         )
 
     def energy_of(self, name: str) -> np.ndarray:
-        """One energy column by name (``"kinetic"``, ``"total"``, ...), J, shape ``[n]``."""
+        """One energy column by name (``"kinetic"``, ``"total"``, ...), J, shape ``[n]``.
+
+        Raises:
+            beltrs.BeltrsError: the run did not record energies (``run(..., energy=True)``),
+                or ``name`` is not one of ``energy_columns``.
+        """
+        from . import _beltrs
+
+        if self.energy is None:
+            raise _beltrs.BeltrsError("energy: not recorded; run with energy=True to record the energies")
+        if name not in self.energy_columns:
+            raise _beltrs.BeltrsError(f"energy column {name!r}: unknown (known: {', '.join(self.energy_columns)})")
         return self.energy[:, self.energy_columns.index(name)]
 
     def __len__(self) -> int:

@@ -194,6 +194,7 @@ class Simulation:
         tension: bool = True,
         node_position: bool = True,
         node_velocity: bool = True,
+        energy: bool = False,
         max_samples: Optional[int] = None,
         max_memory: float = DEFAULT_MAX_MEMORY,
         progress: Optional[bool] = None,
@@ -208,14 +209,17 @@ class Simulation:
                 ``record_interval`` is given.
             record_interval: sample about every this many seconds (rounded to whole steps).
             tension, node_position, node_velocity: record these large arrays. Default True.
+            energy: record the energies (``Result.energy``), computed at each sample from
+                every node and element. Default False (opt-in: they cost a pass over the
+                belt per sample).
             max_samples: most recorded instants kept (>= 2). When the buffer is full, every
                 other instant is dropped and the interval doubles, so the result always
                 spans the whole run on a uniform grid (``Result.record_every`` gives the
                 final interval in steps). Default None: as many as fit in ``max_memory``.
             max_memory: bound on the recording's memory when ``max_samples`` is None, bytes.
                 One instant takes ``8 * (8 + 5*E + 13*P + 2*I)`` bytes with every channel on
-                (E nodes, P pulleys, I idlers; tension, node_position and node_velocity
-                switched off save 8*E, 16*E and 16*E); see :meth:`sample_bytes`.
+                (E nodes, P pulleys, I idlers; tension, node_position, node_velocity and
+                energy switched off save 8*E, 16*E, 16*E and 56); see :meth:`sample_bytes`.
                 Default 256 MiB.
             progress: show a progress bar on stderr (tqdm if installed, else a built-in
                 one). Default None: only when stderr is a terminal.
@@ -251,7 +255,7 @@ class Simulation:
             raise _beltrs.SceneError(
                 f"duration = {duration}: {steps:.3e} steps of {self.dt:.3e} s, more than {_MAX_STEPS:.3e}"
             )
-        per_sample = self.sample_bytes(tension, node_position, node_velocity)
+        per_sample = self.sample_bytes(tension, node_position, node_velocity, energy)
         if max_samples is None:
             if not (np.isfinite(max_memory) and max_memory > 0):
                 raise _beltrs.SceneError(f"max_memory = {max_memory}: must be a finite number > 0 (bytes)")
@@ -273,7 +277,7 @@ class Simulation:
         interrupted = False
         bar = make_bar(progress, steps, self.time + steps * self.dt)
         try:
-            core.begin_recording(every, tension, node_position, node_velocity, max_samples)
+            core.begin_recording(every, tension, node_position, node_velocity, max_samples, energy)
             try:
                 # Short chunks (about 0.1 s of wall time each) keep the bar live and let
                 # Ctrl-C in between them; each chunk runs in Rust without the GIL, and a
@@ -303,10 +307,12 @@ class Simulation:
         self.last_result = self._result(_time.perf_counter() - t0)
         return self.last_result
 
-    def sample_bytes(self, tension: bool = True, node_position: bool = True, node_velocity: bool = True) -> int:
+    def sample_bytes(
+        self, tension: bool = True, node_position: bool = True, node_velocity: bool = True, energy: bool = False
+    ) -> int:
         """Bytes one recorded instant takes with these channels:
-        ``8 * (8 + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
-        return int(self._core.sample_bytes(tension, node_position, node_velocity))
+        ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
+        return int(self._core.sample_bytes(tension, node_position, node_velocity, energy))
 
     def _result(self, wall: float) -> Result:
         return Result._from_core(

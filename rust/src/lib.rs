@@ -20,8 +20,10 @@ pub mod drives;
 pub mod error;
 pub mod friction;
 pub mod geometry;
+pub mod integrate;
 pub mod loads;
 pub mod model;
+pub mod pipeline;
 pub mod presets;
 pub mod record;
 pub mod scene;
@@ -32,10 +34,12 @@ pub mod suggest;
 #[cfg(feature = "python")]
 mod python;
 
-pub use error::{BeltError, BeltResult};
-pub use model::{Model, Stage};
-pub use scene::Scene;
-pub use simulation::{Relaxation, Simulation, StabiliseOptions, StabiliseReport};
 pub use belt::node as forces;
 pub use drives::start_curve;
+pub use error::{BeltError, BeltResult};
+pub use integrate::relax::{Relaxation, StabiliseOptions, StabiliseReport};
+pub use integrate::Integrator;
+pub use model::{Model, Stage};
+pub use scene::Scene;
+pub use simulation::Simulation;
 pub use start_curve::{StartCurve, StartShape};

@@ -13,8 +13,17 @@ pub struct ContactWindow {
     pub len: usize,
 }
 
-/// Everything that changes during a run. Velocities are central-difference half-step
-/// values: `velocity` holds v(t − Δt/2) when the state is at time t.
+/// Everything that changes during a run: the generalized coordinates (node positions,
+/// pulley angles, takeup travel; layout in [`DofLayout`]), their velocities, and a memory
+/// block for effects that need history (contact windows, idler elements, load zones, the
+/// drives' work).
+///
+/// The velocities are the integrator's: with central differences (the only integrator so
+/// far) they are half-step values, `velocity` holding v(t − Δt/2) when the state is at
+/// time t, so that the scheme needs no second force array. Physical velocities at t are
+/// v(t − Δt/2) + a(t)·Δt/2; the recorder and the energies centre them so
+/// (`record::sample`). Stages read them as the velocity of the step about to be taken
+/// (damping, friction's relative speeds, a speed drive's mid-step target).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State {
     /// Simulated time, s.
@@ -106,5 +115,98 @@ impl State {
         self.pulley_omega.iter_mut().for_each(|w| *w = 0.0);
         self.takeup_speed.iter_mut().for_each(|w| *w = 0.0);
         self.idler_omega.iter_mut().for_each(|w| *w = 0.0);
+    }
+}
+
+/// One rigid scalar degree of freedom of the generalized coordinates, after the belt's
+/// (the nodes' positions, two per node). Each has a speed in [`State`], a generalized
+/// force in the evaluation's outputs and an inertia.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rigid {
+    /// Translation of the takeup of pulley `j` along its line (`takeup_travel[j]`,
+    /// `takeup_speed[j]`), m.
+    Takeup(usize),
+    /// Rotation of pulley `j` (`pulley_angle[j]`, `pulley_omega[j]`), rad.
+    Pulley(usize),
+    /// Rotation of idler `k` (`idler_omega[k]`; its angle is not kept: nothing reads it),
+    /// rad.
+    Idler(usize),
+}
+
+/// The layout of the generalized coordinates: the belt's degrees of freedom (two per
+/// node), then the rigid ones in a fixed order (takeups, pulleys, idlers). Integrators,
+/// relaxations, energies and diagnostics loop over it once instead of per body kind.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct DofLayout {
+    /// Belt nodes (each two degrees of freedom, x and y).
+    pub nodes: usize,
+    /// The rigid degrees of freedom, in order.
+    pub rigid: Vec<Rigid>,
+}
+
+impl DofLayout {
+    /// The layout of a model with `nodes` nodes, these pulleys (true: it has a takeup)
+    /// and `idlers` idlers.
+    pub fn new(nodes: usize, takeups: &[bool], idlers: usize) -> DofLayout {
+        let rigid = (takeups.iter().enumerate())
+            .filter(|(_, &t)| t)
+            .map(|(j, _)| Rigid::Takeup(j))
+            .chain((0..takeups.len()).map(Rigid::Pulley))
+            .chain((0..idlers).map(Rigid::Idler))
+            .collect();
+        DofLayout { nodes, rigid }
+    }
+
+    /// Number of generalized coordinates.
+    pub fn len(&self) -> usize {
+        2 * self.nodes + self.rigid.len()
+    }
+
+    /// True when there is nothing to move.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl State {
+    /// Speed of a rigid degree of freedom (m/s or rad/s, at the state's velocity instant).
+    #[inline]
+    pub fn rigid_speed(&self, d: Rigid) -> f64 {
+        match d {
+            Rigid::Takeup(j) => self.takeup_speed[j],
+            Rigid::Pulley(j) => self.pulley_omega[j],
+            Rigid::Idler(k) => self.idler_omega[k],
+        }
+    }
+
+    /// Coordinate (`None` where it is not kept) and speed of a rigid degree of freedom.
+    #[inline]
+    pub fn rigid(&self, d: Rigid) -> (Option<f64>, f64) {
+        match d {
+            Rigid::Takeup(j) => (Some(self.takeup_travel[j]), self.takeup_speed[j]),
+            Rigid::Pulley(j) => (Some(self.pulley_angle[j]), self.pulley_omega[j]),
+            Rigid::Idler(k) => (None, self.idler_omega[k]),
+        }
+    }
+
+    /// Mutable speed of a rigid degree of freedom.
+    #[inline]
+    pub fn rigid_speed_mut(&mut self, d: Rigid) -> &mut f64 {
+        match d {
+            Rigid::Takeup(j) => &mut self.takeup_speed[j],
+            Rigid::Pulley(j) => &mut self.pulley_omega[j],
+            Rigid::Idler(k) => &mut self.idler_omega[k],
+        }
+    }
+
+    /// Coordinate and speed of a rigid degree of freedom, the coordinate `None` where it is
+    /// not kept (idler angles).
+    #[inline]
+    pub fn rigid_mut(&mut self, d: Rigid) -> (Option<&mut f64>, &mut f64) {
+        match d {
+            Rigid::Takeup(j) => (Some(&mut self.takeup_travel[j]), &mut self.takeup_speed[j]),
+            Rigid::Pulley(j) => (Some(&mut self.pulley_angle[j]), &mut self.pulley_omega[j]),
+            Rigid::Idler(k) => (None, &mut self.idler_omega[k]),
+        }
     }
 }

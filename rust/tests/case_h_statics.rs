@@ -2,8 +2,8 @@
 use crate::common;
 
 use beltrs::scene::FrictionModel;
-use beltrs::simulation::{Relaxation, StabiliseOptions};
 use beltrs::Simulation;
+use beltrs::{Relaxation, StabiliseOptions};
 
 #[test]
 fn fire_and_kinetic_damping_reach_the_same_equilibrium() {

@@ -64,7 +64,14 @@ fn resumed_run_continues_bit_for_bit() {
     assert_eq!(b.model.dt.to_bits(), a.model.dt.to_bits());
 
     for sim in [&mut a, &mut b] {
-        sim.begin_recording(Channels::default(), 3, usize::MAX);
+        sim.begin_recording(
+            Channels {
+                energy: true,
+                ..Channels::default()
+            },
+            3,
+            usize::MAX,
+        );
         sim.advance(700).unwrap();
         sim.end_recording();
     }
@@ -224,7 +231,14 @@ fn fused_stepping_matches_stage_by_stage_bit_for_bit() {
     }
     assert_eq!(staged.state, fused.state);
     for sim in [&mut staged, &mut fused] {
-        sim.begin_recording(Channels::default(), 7, usize::MAX);
+        sim.begin_recording(
+            Channels {
+                energy: true,
+                ..Channels::default()
+            },
+            7,
+            usize::MAX,
+        );
         sim.advance(350).unwrap();
         sim.end_recording();
     }

@@ -13,6 +13,7 @@ const PER_PULLEY_ONLY: Channels = Channels {
     tension: false,
     node_position: false,
     node_velocity: false,
+    energy: false,
 };
 
 // ---------------------------------------------------------------------------------------

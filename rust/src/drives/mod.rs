@@ -1,4 +1,13 @@
-//! Drives: torque drives, speed-controlled drives following a starting curve, brakes and
-//! gravity takeups.
+//! Drives and everything else that turns or moves a pulley besides the belt: torque
+//! drives, speed-controlled drives following a starting curve, brakes, and gravity
+//! takeups.
+//!
+//! - [`torque`]: the `drives` stage, T(t, ω).
+//! - [`hold`]: the `speed_drives` and `brakes` stages, prescribed motion within a torque.
+//! - [`takeup`]: the gravity takeup's translation, moved by the integrator.
+//! - [`start_curve`]: conveyor starting curves (Harrison, Nordell, cubic, linear).
 
+pub mod hold;
 pub mod start_curve;
+pub mod takeup;
+pub mod torque;

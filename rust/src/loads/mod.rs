@@ -15,6 +15,8 @@
 //! with it). Each node's mass is a pure function of the current zones, so a checkpoint that
 //! stores the edges and masses resumes bit for bit.
 
+pub mod stage;
+
 use crate::contact::segment_distance;
 use crate::error::{BeltError, BeltResult};
 use crate::geometry::{BeltPath, Segment};

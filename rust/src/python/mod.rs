@@ -6,7 +6,8 @@ mod scene_out;
 
 use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
-use crate::simulation::{Relaxation, Simulation, StabiliseOptions};
+use crate::simulation::Simulation;
+use crate::{Relaxation, StabiliseOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -239,55 +240,10 @@ impl PySimulation {
         Ok(d)
     }
 
-    /// Advance `steps` steps, sampling every `every` steps into a fresh recording. Checks
-    /// for Ctrl-C every `chunk` steps; on Ctrl-C stops and keeps what was recorded. A
-    /// blow-up raises DivergenceError and keeps the recording.
-    /// At most `max_samples` instants are kept (see `begin_recording`).
-    #[pyo3(signature = (steps, every=1, tension=true, node_position=true, node_velocity=true, chunk=4096, max_samples=usize::MAX))]
-    #[allow(clippy::too_many_arguments)]
-    fn run(
-        &mut self,
-        py: Python<'_>,
-        steps: u64,
-        every: u64,
-        tension: bool,
-        node_position: bool,
-        node_velocity: bool,
-        chunk: u64,
-        max_samples: usize,
-    ) -> PyResult<()> {
-        if every == 0 {
-            return Err(SceneError::new_err("every = 0: must be ≥ 1"));
-        }
-        let channels = Channels {
-            tension,
-            node_position,
-            node_velocity,
-        };
-        self.interrupted = false;
-        let chunk = chunk.max(1);
-        guarded(|| {
-            self.inner.begin_recording(channels, every, max_samples);
-            let mut done = 0;
-            while done < steps {
-                let n = chunk.min(steps - done);
-                let sim = &mut self.inner;
-                py.detach(|| sim.advance(n)).map_err(to_py)?;
-                done += n;
-                if py.check_signals().is_err() {
-                    self.interrupted = true;
-                    return Ok(());
-                }
-            }
-            self.inner.end_recording();
-            Ok(())
-        })
-    }
-
     /// Start a fresh recording, sampled now and every `every` steps, keeping at most
     /// `max_samples` (≥ 2) instants: when full, every other instant is dropped and the
     /// interval doubles.
-    #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX))]
+    #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX, energy=false))]
     fn begin_recording(
         &mut self,
         every: u64,
@@ -295,6 +251,7 @@ impl PySimulation {
         node_position: bool,
         node_velocity: bool,
         max_samples: usize,
+        energy: bool,
     ) -> PyResult<()> {
         if every == 0 {
             return Err(SceneError::new_err("every = 0: must be ≥ 1"));
@@ -308,6 +265,7 @@ impl PySimulation {
             tension,
             node_position,
             node_velocity,
+            energy,
         };
         self.interrupted = false;
         self.inner.begin_recording(channels, every, max_samples);
@@ -339,20 +297,22 @@ impl PySimulation {
         self.inner.record_every()
     }
 
-    /// Bytes one recorded instant takes with the current channels.
-    #[getter]
-    fn bytes_per_sample(&self) -> usize {
-        self.inner.recording.bytes_per_sample()
-    }
-
     /// Bytes one instant would take with these channels.
-    fn sample_bytes(&self, tension: bool, node_position: bool, node_velocity: bool) -> usize {
+    #[pyo3(signature = (tension, node_position, node_velocity, energy=false))]
+    fn sample_bytes(
+        &self,
+        tension: bool,
+        node_position: bool,
+        node_velocity: bool,
+        energy: bool,
+    ) -> usize {
         let m = &self.inner.model;
         let r = Recording::new(
             Channels {
                 tension,
                 node_position,
                 node_velocity,
+                energy,
             },
             m.nodes,
             m.pulleys.len(),
@@ -416,11 +376,6 @@ impl PySimulation {
     /// The current recording as a dict of NumPy arrays (copies).
     fn recording<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         recording_dict(py, &self.inner.recording)
-    }
-
-    /// Bytes held by the recording buffers.
-    fn recording_bytes(&self) -> usize {
-        self.inner.recording.bytes()
     }
 
     /// The current state as a dict of NumPy arrays (copies).
@@ -538,7 +493,9 @@ fn recording_dict<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, Py
     d.set_item("slipping_nodes", array(py, &r.slipping_nodes, &[t, p])?)?;
     d.set_item("idler_force", array(py, &r.idler_force, &[t, q])?)?;
     d.set_item("idler_speed", array(py, &r.idler_speed, &[t, q])?)?;
-    d.set_item("energy", array(py, &r.energy, &[t, ENERGY_COLUMNS.len()])?)?;
+    if r.channels.energy {
+        d.set_item("energy", array(py, &r.energy, &[t, ENERGY_COLUMNS.len()])?)?;
+    }
     d.set_item("energy_columns", ENERGY_COLUMNS.to_vec())?;
     Ok(d)
 }

@@ -1,7 +1,11 @@
-//! What a run keeps: flat, row-major buffers that the bindings hand to NumPy.
+//! What a run keeps: flat, row-major buffers that the bindings hand to NumPy, and the
+//! sampling of the state into them ([`sample`]).
 
-/// Which arrays to record. Time, energies and the per-pulley/takeup arrays are small and
-/// always kept; the per-node and per-element arrays can be switched off.
+mod sample;
+
+/// Which arrays to record. Time and the per-pulley/takeup/idler arrays are small and
+/// always kept; the per-node and per-element arrays can be switched off, and the energies
+/// (a pass over every node and element per sample) are computed only when asked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Channels {
     /// Element tensions `[n_out, n_elements]`.
@@ -10,6 +14,8 @@ pub struct Channels {
     pub node_position: bool,
     /// Node velocities `[n_out, n_nodes, 2]`.
     pub node_velocity: bool,
+    /// Energies `[n_out, 7]` ([`ENERGY_COLUMNS`]). Default false: opt-in.
+    pub energy: bool,
 }
 
 impl Default for Channels {
@@ -18,6 +24,7 @@ impl Default for Channels {
             tension: true,
             node_position: true,
             node_velocity: true,
+            energy: false,
         }
     }
 }
@@ -177,13 +184,13 @@ impl Recording {
             p,
             q,
             q,
-            ENERGY_COLUMNS.len(),
+            if c.energy { ENERGY_COLUMNS.len() } else { 0 },
         ]
     }
 
     /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 13·p + 2·q) with all
-    /// channels on (n nodes, p pulleys, q idlers); the per-node channels that are off drop
-    /// out.
+    /// channels on (n nodes, p pulleys, q idlers); the channels that are off drop out (the
+    /// energies' 7 of the 8).
     pub fn bytes_per_sample(&self) -> usize {
         8 * self.row_widths().iter().sum::<usize>()
     }

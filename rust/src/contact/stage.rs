@@ -1,0 +1,67 @@
+//! Contact stages: belt nodes on pulleys, belt elements on idlers.
+
+use super::{IdlerBody, PulleyBody};
+use crate::pipeline::StageContext;
+
+/// Nodal penalty contact with pulleys (thesis eq. 4.70–4.75), searched in each pulley's
+/// window of nodes.
+pub fn pulley_contact(cx: &mut StageContext<'_>) {
+    let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
+    for (j, p) in m.pulleys.iter().enumerate() {
+        // Zero stiffness: the belt passes through this pulley (no contact).
+        if p.contact_stiffness == 0.0 {
+            continue;
+        }
+        let body = PulleyBody {
+            center: s.pulley_center(m, j),
+            center_velocity: s.pulley_center_velocity(m, j),
+            radius: p.radius,
+            stiffness: p.contact_stiffness * cx.contact_scale,
+            damping: if cx.effects.damping {
+                p.contact_damping
+            } else {
+                0.0
+            },
+            margin: p.window_margin,
+        };
+        super::update_window(
+            &mut s.pulley_window[j],
+            &s.position,
+            &body,
+            s.step.is_multiple_of(super::FULL_SCAN_INTERVAL),
+        );
+        sc.pulley_force[j] = super::pulley_contact(
+            &s.pulley_window[j],
+            &s.position,
+            &s.velocity,
+            &body,
+            &mut sc.force,
+            &mut sc.contacts[j],
+        );
+    }
+}
+
+/// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102), each idler tracking
+/// the element it touched last.
+pub fn idler_contact(cx: &mut StageContext<'_>) {
+    let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
+    for (k, d) in m.idlers.iter().enumerate() {
+        let body = IdlerBody {
+            center: d.center,
+            radius: d.radius,
+            stiffness: d.contact_stiffness * cx.contact_scale,
+            damping: if cx.effects.damping {
+                d.contact_damping
+            } else {
+                0.0
+            },
+        };
+        sc.idler_contacts[k] = super::idler_contact(
+            &mut s.idler_element[k],
+            &s.position,
+            &s.velocity,
+            &body,
+            &mut sc.force,
+        );
+    }
+}

@@ -1,0 +1,318 @@
+//! Explicit central differences (thesis eq. 4.58–4.60, 4.62, 4.64–4.65):
+//! v(t + Δt/2) = v(t − Δt/2) + Δt·F(t)/m, x(t + Δt) = x(t) + Δt·v(t + Δt/2), for the belt
+//! nodes and every rigid degree of freedom of the layout ([`crate::state::DofLayout`]).
+//!
+//! The fast path: unless profiling, each node update is fused with the next step's axial
+//! pass ([`crate::forces::axial_pass`]), one sweep over the nodes instead of two, with the
+//! same operations on the same values (so the same bits). This is why the state keeps
+//! half-step velocities: the update needs only F(t), never a second force array.
+
+use crate::error::{BeltError, BeltResult};
+use crate::forces;
+use crate::pipeline::Effects;
+use crate::simulation::Simulation;
+use crate::state::Rigid;
+use nalgebra::Vector2;
+use std::cell::Cell;
+
+type V2 = Vector2<f64>;
+
+/// The central-difference update of one node, v ← v + Δt·f/m, x ← x + Δt·v, and a
+/// running flag of whether every new position is finite.
+///
+/// The finiteness check is a flag per position, not one running sum (a chain of dependent
+/// additions through every node, which the compiler may not reorder). Testing the new
+/// positions suffices: x + v·Δt with Δt > 0 is finite only if the old position and the new
+/// velocity are finite (or it overflows), so a non-finite force, velocity or position is
+/// caught in the step that produces it.
+///
+/// On x86-64 the update is written with SSE2 (part of the x86-64 baseline, so always
+/// present), one node per 128-bit register: left to itself the compiler vectorises across
+/// nodes and spends most of the loop de-interleaving x and y, which made it about 1.6×
+/// slower (docs/performance.md). The arithmetic is the same operations in the same order as
+/// the portable version, so the result is the same to the last bit.
+#[derive(Clone, Copy)]
+struct AllFinite {
+    #[cfg(target_arch = "x86_64")]
+    mask: std::arch::x86_64::__m128d,
+    #[cfg(not(target_arch = "x86_64"))]
+    finite: bool,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl AllFinite {
+    #[inline(always)]
+    fn new() -> AllFinite {
+        use std::arch::x86_64::{_mm_castsi128_pd, _mm_set1_epi64x};
+        // SAFETY: SSE2 is part of the x86-64 baseline; these only build a register.
+        unsafe {
+            AllFinite {
+                mask: _mm_castsi128_pd(_mm_set1_epi64x(-1)),
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn integrate_node(&mut self, x: &mut V2, v: &mut V2, f: V2, inv_mass: f64, dt: f64) {
+        use std::arch::x86_64::{
+            _mm_add_pd, _mm_and_pd, _mm_castsi128_pd, _mm_cmplt_pd, _mm_loadu_pd, _mm_mul_pd,
+            _mm_set1_epi64x, _mm_set1_pd, _mm_storeu_pd,
+        };
+        // SAFETY: SSE2 is part of the x86-64 baseline, so the intrinsics are available on
+        // every x86-64 target. Each pointer is to the two contiguous f64 of one live
+        // Vector2<f64> (nalgebra stores it as [f64; 2]), borrowed for this call (shared for
+        // f, exclusive for x and v); the unaligned loads and stores need no alignment.
+        unsafe {
+            let magnitude = _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX));
+            let vn = _mm_add_pd(
+                _mm_loadu_pd(v.as_ptr()),
+                _mm_mul_pd(_mm_loadu_pd(f.as_ptr()), _mm_set1_pd(dt * inv_mass)),
+            );
+            _mm_storeu_pd(v.as_mut_ptr(), vn);
+            let xn = _mm_add_pd(_mm_loadu_pd(x.as_ptr()), _mm_mul_pd(vn, _mm_set1_pd(dt)));
+            _mm_storeu_pd(x.as_mut_ptr(), xn);
+            let finite = _mm_cmplt_pd(_mm_and_pd(xn, magnitude), _mm_set1_pd(f64::INFINITY));
+            self.mask = _mm_and_pd(self.mask, finite);
+        }
+    }
+
+    #[inline(always)]
+    fn all(self) -> bool {
+        // SAFETY: SSE2 is part of the x86-64 baseline.
+        unsafe { std::arch::x86_64::_mm_movemask_pd(self.mask) == 0b11 }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl AllFinite {
+    fn new() -> AllFinite {
+        AllFinite { finite: true }
+    }
+
+    #[inline(always)]
+    fn integrate_node(&mut self, x: &mut V2, v: &mut V2, f: V2, inv_mass: f64, dt: f64) {
+        *v += f * (dt * inv_mass);
+        *x += *v * dt;
+        self.finite &= x.x.is_finite() & x.y.is_finite();
+    }
+
+    fn all(self) -> bool {
+        self.finite
+    }
+}
+
+/// The nodes as the central-difference update moves them, one per `next`: yields each
+/// node's new (position, velocity) and keeps the [`AllFinite`] flag.
+struct Moving<N, M> {
+    nodes: N,
+    inv_mass: M,
+    dt: f64,
+    finite: AllFinite,
+}
+
+impl<'a, N, M> Iterator for Moving<N, M>
+where
+    N: Iterator<Item = ((&'a mut V2, &'a mut V2), &'a Cell<V2>)>,
+    M: Iterator<Item = f64>,
+{
+    type Item = (V2, V2);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<(V2, V2)> {
+        let ((x, v), f) = self.nodes.next()?;
+        let im = self.inv_mass.next()?;
+        self.finite.integrate_node(x, v, f.get(), im, self.dt);
+        Some((*x, *v))
+    }
+}
+
+impl Simulation {
+    /// One central-difference update with step `dt` (s): the model's in dynamics, the
+    /// relaxation's own there.
+    pub(crate) fn integrate(&mut self, dt: f64) -> BeltResult<()> {
+        self.integrate_then(dt, None)
+    }
+
+    /// [`Simulation::integrate`]; with `Some(tensions)`, the next step's axial pass
+    /// ([`forces::axial_pass`], all effects on) is fused into the node loop: each node is
+    /// moved and then used at once for its elements, one sweep over the nodes instead of
+    /// two, the same operations on the same values (so the same bits). The element
+    /// tensions are written only if `tensions`. The caller then evaluates with
+    /// `axial_done`.
+    pub(crate) fn integrate_then(&mut self, dt: f64, axial: Option<bool>) -> BeltResult<()> {
+        let m = &self.model;
+        let s = &mut self.state;
+        let sc = &mut self.scratch;
+        let (x, v) = (&mut s.position, &mut s.velocity);
+        let f = Cell::from_mut(sc.force.as_mut_slice()).as_slice_of_cells();
+        let next =
+            axial.map(|tensions| (m.axial_belt(Effects::ALL.damping, &s.node_mass), tensions));
+        let tension = &mut sc.tension;
+        let nodes_finite = match self.inertia.same_inv_mass {
+            Some(im) => integrate_nodes(x, v, f, std::iter::repeat(im), dt, next, tension),
+            None => integrate_nodes(
+                x,
+                v,
+                f,
+                self.inertia.inv_mass.iter().copied(),
+                dt,
+                next,
+                tension,
+            ),
+        };
+        let sc = &self.scratch;
+        let mut check = 0.0;
+        for &d in &m.dofs.rigid {
+            let force = sc.rigid_force(m, d);
+            let mass = self.inertia.rigid(m, d);
+            let (coordinate, speed) = s.rigid_mut(d);
+            let old = *speed;
+            // A holding brake stops a pulley this step, a speed-controlled drive within its
+            // limit puts it on its curve; say so exactly.
+            let held = match d {
+                Rigid::Pulley(j) => sc.held[j],
+                _ => None,
+            };
+            let new = held.unwrap_or(old + dt * force / mass);
+            *speed = new;
+            if let Some(q) = coordinate {
+                *q += new * dt;
+            }
+            match d {
+                Rigid::Pulley(j) => {
+                    s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
+                    check += new + s.pulley_angle[j];
+                }
+                Rigid::Takeup(j) => {
+                    if let Some(t) = &m.pulleys[j].takeup {
+                        crate::drives::takeup::apply_stops(
+                            t,
+                            &mut s.takeup_travel[j],
+                            &mut s.takeup_speed[j],
+                        );
+                    }
+                    check += s.takeup_travel[j] + s.takeup_speed[j];
+                }
+                Rigid::Idler(_) => check += new,
+            }
+        }
+        s.time += dt;
+        s.step += 1;
+        check += s.drive_work;
+        if !(nodes_finite && check.is_finite()) {
+            return Err(self.locate_non_finite());
+        }
+        Ok(())
+    }
+
+    /// The first non-finite quantity of the state, as an error naming time, step, place
+    /// and quantity.
+    pub(crate) fn locate_non_finite(&self) -> BeltError {
+        let s = &self.state;
+        let diverged = |quantity: &str, location: String| BeltError::Diverged {
+            time: s.time,
+            step: s.step,
+            quantity: quantity.to_string(),
+            location,
+        };
+        for i in 0..self.model.nodes {
+            let (x, v) = (s.position[i], s.velocity[i]);
+            // No force check: a non-finite force makes the node's new velocity non-finite
+            // (f·Δt/m is infinite or NaN, and so is v + it), so a force was never the first
+            // non-finite quantity found; and after a fused integration the force array
+            // already holds the next step's axial forces.
+            let checks = [
+                ("position x", x.x),
+                ("position y", x.y),
+                ("velocity x", v.x),
+                ("velocity y", v.y),
+            ];
+            for (q, val) in checks {
+                if !val.is_finite() {
+                    let e = if i == 0 { self.model.nodes - 1 } else { i - 1 };
+                    return diverged(q, format!("node {i} (between elements {e} and {i})"));
+                }
+            }
+        }
+        for &d in &self.model.dofs.rigid {
+            let (coordinate, speed) = s.rigid(d);
+            let coordinate = coordinate.unwrap_or(0.0);
+            let (quantity, place) = match d {
+                Rigid::Pulley(j) if !speed.is_finite() => ("angular speed", j),
+                Rigid::Pulley(j) if !coordinate.is_finite() => ("rotation angle", j),
+                Rigid::Takeup(j) if !(speed.is_finite() && coordinate.is_finite()) => {
+                    ("takeup travel", j)
+                }
+                Rigid::Idler(k) if !speed.is_finite() => {
+                    return diverged("angular speed", format!("idler {k}"))
+                }
+                _ => continue,
+            };
+            return diverged(
+                quantity,
+                format!("pulley {}", self.model.pulleys[place].name),
+            );
+        }
+        if !s.drive_work.is_finite() {
+            return diverged("work done", "the drives".to_string());
+        }
+        diverged("energy", "the model".to_string())
+    }
+
+    /// `steps` steps of: evaluate all forces, `between` (e.g. record), integrate. Unless
+    /// profiling (which times the axial stage on its own), each integration but the last
+    /// is fused with the next step's axial pass ([`Simulation::integrate_then`]): the same
+    /// arithmetic in one sweep over the nodes instead of two. Each call starts with a
+    /// complete evaluation, so nothing carries over between calls (a changed scene or
+    /// state, a relaxation or a checkpoint in between sees the usual forces). Element
+    /// tensions are written only if `tensions`. A scene with material loads is not fused:
+    /// its loads stage changes node masses before the axial pass adds the weights.
+    pub(crate) fn central_difference_steps(
+        &mut self,
+        steps: u64,
+        tensions: bool,
+        mut between: impl FnMut(&mut Self),
+    ) -> BeltResult<()> {
+        let fuse = self.profile.is_none() && self.model.loads.is_empty();
+        let dt = self.model.dt;
+        let mut axial_done = false;
+        for k in 0..steps {
+            self.evaluate_after(Effects::ALL, dt, axial_done);
+            between(self);
+            axial_done = fuse && k + 1 < steps;
+            self.integrate_then(dt, axial_done.then_some(tensions))?;
+        }
+        Ok(())
+    }
+}
+
+/// Central differences on the nodes: v ← v + Δt·f/m, x ← x + Δt·v, and then, with
+/// `next` = Some((belt, tensions)), the axial pass of the new state on each node as it
+/// moves ([`Simulation::integrate_then`]). Returns whether every new position is finite.
+#[inline(always)]
+fn integrate_nodes(
+    x: &mut [V2],
+    v: &mut [V2],
+    f: &[Cell<V2>],
+    inv_mass: impl Iterator<Item = f64>,
+    dt: f64,
+    next: Option<(forces::AxialBelt, bool)>,
+    tension: &mut [f64],
+) -> bool {
+    let nodes = Moving {
+        nodes: x.iter_mut().zip(v.iter_mut()).zip(f),
+        inv_mass,
+        dt,
+        finite: AllFinite::new(),
+    };
+    let moved = match next {
+        None => {
+            let mut nodes = nodes;
+            nodes.by_ref().for_each(drop);
+            nodes
+        }
+        Some((belt, true)) => forces::axial_pass(&belt, nodes, &mut &mut *tension, f),
+        Some((belt, false)) => forces::axial_pass(&belt, nodes, &mut forces::NoTensions, f),
+    };
+    moved.finite.all()
+}

@@ -1,0 +1,265 @@
+//! Static relaxation (thesis §6.2): the belt and takeups move to static equilibrium on
+//! fictitious masses, with their own step and contact scale; simulated time does not
+//! advance and the model is never written.
+//!
+//! - [`fire`]: FIRE (default), [`kinetic`]: kinetic-energy damping per degree of freedom.
+//! - [`continuation`]: stiff contact is relaxed through a ladder of softer contacts.
+
+mod continuation;
+mod fire;
+mod kinetic;
+
+pub use continuation::{CONTINUATION_FACTOR, CONTINUATION_STAGES, CONTINUATION_START};
+
+use super::Inertia;
+use crate::error::{BeltError, BeltResult};
+use crate::model::{Model, StableStep};
+use crate::pipeline::{Effects, Scratch};
+use crate::simulation::Simulation;
+use crate::state::Rigid;
+
+/// Static relaxation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Relaxation {
+    /// Kinetic-energy damping (thesis §6.2): velocities are zeroed at kinetic-energy
+    /// peaks. Each degree of freedom is reset at its own peak (the thesis resets all at the
+    /// peak of the total, which stalls with stiff contact; see `docs/statics.md`).
+    #[default]
+    KineticEnergy,
+    /// FIRE (Bitzek et al. 2006): inertial relaxation that mixes the velocity towards the
+    /// force and restarts when the power turns negative: same equilibrium, ~100× fewer steps.
+    Fire,
+}
+
+/// Options of [`Simulation::stabilise`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabiliseOptions {
+    /// Method. Default [`Relaxation::Fire`].
+    pub method: Relaxation,
+    /// Keep belt friction on while relaxing (thesis §6.3 / fig. 6.6 locks in lower
+    /// tensions). Default false.
+    pub friction: bool,
+    /// Converged when the largest out-of-balance force on any node or takeup is below this
+    /// fraction of the largest element tension. Default 1e-7.
+    pub tolerance: f64,
+    /// Give up after this many steps. Default 5·10⁶.
+    pub max_steps: u64,
+}
+
+impl Default for StabiliseOptions {
+    fn default() -> Self {
+        StabiliseOptions {
+            method: Relaxation::Fire,
+            friction: false,
+            tolerance: 1e-7,
+            max_steps: 5_000_000,
+        }
+    }
+}
+
+/// What [`Simulation::stabilise`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabiliseReport {
+    /// Relaxation steps taken.
+    pub steps: u64,
+    /// Final out-of-balance force relative to the largest tension.
+    pub residual: f64,
+    /// Whether the tolerance was met.
+    pub converged: bool,
+    /// Number of times the velocities were zeroed.
+    pub resets: u64,
+}
+
+impl StabiliseReport {
+    /// Continue this report with a later relaxation `r`: steps and resets add up, the
+    /// residual and the verdict are the later one's.
+    fn then(&mut self, r: StabiliseReport) {
+        self.steps += r.steps;
+        self.resets += r.resets;
+        self.residual = r.residual;
+        self.converged = r.converged;
+    }
+}
+
+/// The relaxation's own settings for one stage: its step and contact scale (the model's
+/// stay as compiled).
+#[derive(Debug, Clone, Copy)]
+struct RelaxStep {
+    /// The step the fictitious masses are scaled for, s.
+    dt: f64,
+    /// Factor on every contact stiffness.
+    contact_scale: f64,
+}
+
+impl Inertia {
+    /// Fictitious masses m̃ = K·Δt² that put every degree of freedom at the same distance
+    /// from its stability limit (ωΔt ≤ 1), as in Underwood's dynamic relaxation, for the
+    /// stiffness bounds and step of `stable` (the model's contact scaled by
+    /// `contact_scale`). K is the Gershgorin row sum: a node touching a moving (takeup)
+    /// pulley is coupled to it through the contact stiffness, which adds an off-diagonal
+    /// term to both rows, so the node bound gains one contact stiffness and the takeup
+    /// bound doubles. Without those terms the node–takeup mode sits at ωΔt ≈ √2 and FIRE's
+    /// longer steps turn it unstable.
+    fn fictitious(model: &Model, stable: &StableStep, contact_scale: f64) -> Inertia {
+        let dt2 = stable.dt * stable.dt;
+        let takeup_contact = model
+            .pulleys
+            .iter()
+            .filter(|p| p.takeup.is_some())
+            .map(|p| p.contact_stiffness * contact_scale)
+            .fold(0.0, f64::max);
+        let mass: Vec<f64> = stable
+            .node_stiffness_bound
+            .iter()
+            .map(|k| (k + takeup_contact) * dt2)
+            .collect();
+        let inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
+        let takeup_mass = model
+            .pulleys
+            .iter()
+            .enumerate()
+            .map(|(j, p)| match &p.takeup {
+                // A takeup without pulley contact feels only its pull: keep its true mass.
+                Some(t) if stable.takeup_stiffness_bound[j] == 0.0 => t.moving_mass,
+                Some(_) => 2.0 * stable.takeup_stiffness_bound[j] * dt2,
+                None => f64::INFINITY,
+            })
+            .collect();
+        Inertia {
+            mass,
+            same_inv_mass: crate::forces::all_same(&inv_mass),
+            inv_mass,
+            takeup_mass,
+            physical: false,
+        }
+    }
+}
+
+impl Simulation {
+    /// Relax to static equilibrium (thesis §6.2). Drives and brakes are off; friction is
+    /// off unless `options.friction`. Both methods run on fictitious masses m̃ = K·Δt²
+    /// (Underwood's dynamic relaxation), since time is not physical here; gravity still acts
+    /// on the true masses. Simulated time does not advance. On return all velocities are zero.
+    ///
+    /// Stiff contact makes the relaxation ill-conditioned (the slow takeup mode moves the
+    /// contact nodes, whose fictitious masses scale with the contact stiffness). When the
+    /// contact is more than [`CONTINUATION_START`]× stiffer than the stiffest belt element,
+    /// the relaxation is continued in contact stiffness: it starts at that ratio and
+    /// multiplies the stiffness by [`CONTINUATION_FACTOR`] per stage up to the scene's
+    /// value, each stage starting from the previous equilibrium. The report sums the steps.
+    pub fn stabilise(&mut self, options: &StabiliseOptions) -> BeltResult<StabiliseReport> {
+        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+            return Err(BeltError::invalid(
+                "tolerance",
+                options.tolerance,
+                "must be > 0",
+            ));
+        }
+        let ladder = self.contact_continuation();
+        if ladder.is_empty() {
+            return self.relax(options, 1.0);
+        }
+        let stages = self.relax_softened(&ladder, options);
+        self.scratch = Scratch::new(&self.model);
+        self.inertia = Inertia::physical(&self.model, &self.state.node_mass);
+        let mut total = stages?;
+        let remaining = options.max_steps - total.steps;
+        // Converged only once the scene's own stiffness has relaxed too.
+        if total.converged {
+            total.converged = false;
+            if remaining > 0 {
+                let r = self.relax(
+                    &StabiliseOptions {
+                        max_steps: remaining,
+                        ..*options
+                    },
+                    1.0,
+                )?;
+                total.then(r);
+            }
+        }
+        Ok(total)
+    }
+
+    /// One relaxation with every contact stiffness scaled by `contact_scale`.
+    fn relax(
+        &mut self,
+        options: &StabiliseOptions,
+        contact_scale: f64,
+    ) -> BeltResult<StabiliseReport> {
+        let stable = self.model.stable_step(contact_scale)?;
+        let step = RelaxStep {
+            dt: stable.dt,
+            contact_scale,
+        };
+        let (time, step_count) = (self.state.time, self.state.step);
+        let effects = Effects {
+            friction: options.friction,
+            drives: false,
+            quasi_static_friction: true,
+            damping: false,
+        };
+        self.state.zero_velocities();
+        self.inertia = Inertia::fictitious(&self.model, &stable, contact_scale);
+        let result = match options.method {
+            Relaxation::KineticEnergy => self.relax_kinetic(effects, step, options),
+            Relaxation::Fire => self.relax_fire(effects, step, options),
+        };
+        self.inertia = Inertia::physical(&self.model, &self.state.node_mass);
+        self.state.zero_velocities();
+        self.state.time = time;
+        self.state.step = step_count;
+        result
+    }
+
+    /// Evaluate the forces for a relaxation step.
+    fn relax_evaluate(&mut self, effects: Effects, step: RelaxStep) {
+        self.evaluate_scaled(effects, step.dt, step.contact_scale, false);
+    }
+
+    /// Largest out-of-balance force on a node or takeup relative to the largest tension.
+    pub(crate) fn residual(&self) -> f64 {
+        let sc = &self.scratch;
+        let m = &self.model;
+        let mut worst = sc.force.iter().map(|f| f.norm()).fold(0.0, f64::max);
+        for &d in &m.dofs.rigid {
+            if let Rigid::Takeup(_) = d {
+                worst = worst.max(sc.rigid_force(m, d).abs());
+            }
+        }
+        let scale = sc
+            .tension
+            .iter()
+            .map(|t| t.abs())
+            .fold(0.0, f64::max)
+            .max(
+                m.mass
+                    .iter()
+                    .fold(0.0, |a: f64, &mass| a.max(mass * m.gravity)),
+            )
+            .max(f64::MIN_POSITIVE);
+        worst / scale
+    }
+
+    /// Relaxation moves are fictitious and can build up speed; a node that moved further
+    /// than a quarter of the smallest idler radius, pulley radius or element length in one
+    /// step `dt` could tunnel through a roll (centre-line contact only sees penetration).
+    /// Scale the node's velocity so that its next move (after the coming force update)
+    /// stays within that bound.
+    fn limit_relaxation_move(&mut self, dt: f64) {
+        let cap = 0.25 * self.model.relaxation_move_limit;
+        let s = &mut self.state;
+        for ((v, f), im) in s
+            .velocity
+            .iter_mut()
+            .zip(&self.scratch.force)
+            .zip(&self.inertia.inv_mass)
+        {
+            let next = *v + f * (dt * im);
+            let step = next.norm() * dt;
+            if step > cap {
+                *v = next * (cap / step) - f * (dt * im);
+            }
+        }
+    }
+}

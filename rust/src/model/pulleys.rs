@@ -1,0 +1,111 @@
+//! Compiled pulleys and their takeups, drives and brakes.
+
+use crate::friction::Prescribed;
+use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
+use nalgebra::Vector2;
+
+/// Compiled gravity takeup.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TakeupModel {
+    /// Unit vector of the takeup line (direction of the counterweight pull).
+    pub direction: Vector2<f64>,
+    /// Translating mass: pulley + counterweight, kg.
+    pub moving_mass: f64,
+    /// Constant force along `direction` from the counterweight and the pulley weight, N.
+    pub pull: f64,
+    /// Travel limits from the initial position, m.
+    pub travel_min: f64,
+    /// Travel limits from the initial position, m.
+    pub travel_max: f64,
+}
+
+/// Compiled pulley.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PulleyModel {
+    /// Name for messages.
+    pub name: String,
+    /// Initial centre, m.
+    pub center: Vector2<f64>,
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia including drive inertia, kg·m².
+    pub inertia: f64,
+    /// Contact stiffness, N/m.
+    pub contact_stiffness: f64,
+    /// Contact damping, N·s/m.
+    pub contact_damping: f64,
+    /// Friction model.
+    pub friction: FrictionModel,
+    /// Takeup, if the pulley translates.
+    pub takeup: Option<TakeupModel>,
+    /// Drive, if any.
+    pub drive: Option<DriveSpec>,
+    /// Brake, if any.
+    pub brake: Option<BrakeSpec>,
+    /// Search margin beyond the radius for the contact window, m.
+    pub window_margin: f64,
+}
+
+impl PulleyModel {
+    /// The brake's hold at time `time` (s): at rest, up to its capacity then.
+    #[inline]
+    pub fn brake_hold(&self, time: f64) -> Option<Prescribed> {
+        self.brake
+            .as_ref()
+            .map(|b| Prescribed::at_rest(b.capacity.eval(time)))
+    }
+
+    /// The speed-controlled drive's hold for the step from `time` to `time + dt` (s): the
+    /// pulley speed at the mid-step, where central differences place it, is the curve's
+    /// belt speed there over the radius, ω(t + Δt/2) = v(t + Δt/2)/r, up to `max_torque`.
+    #[inline]
+    pub fn speed_hold(&self, time: f64, dt: f64) -> Option<Prescribed> {
+        let drive = self.drive.as_ref()?;
+        let curve = drive.start_curve.as_ref()?;
+        Some(Prescribed {
+            omega: curve.speed_at(time + 0.5 * dt) / self.radius,
+            capacity: drive.max_torque,
+        })
+    }
+}
+
+/// Compile the scene's pulleys for elements of rest length `l0` (m): the contact window
+/// reaches one element beyond the radius.
+pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
+    scene
+        .pulleys
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let drive_inertia = p.drive.as_ref().map_or(0.0, |d| d.inertia);
+            PulleyModel {
+                name: if p.name.is_empty() {
+                    format!("pulleys[{i}]")
+                } else {
+                    p.name.clone()
+                },
+                center: Vector2::new(p.center[0], p.center[1]),
+                radius: p.radius,
+                inertia: p.polar_inertia() + drive_inertia,
+                contact_stiffness: p.contact_stiffness,
+                contact_damping: p.contact_damping,
+                friction: p.friction,
+                takeup: p.takeup.as_ref().map(|t| {
+                    let dir = Vector2::new(t.direction[0], t.direction[1]);
+                    TakeupModel {
+                        direction: dir,
+                        moving_mass: p.mass + t.counterweight,
+                        // Counterweight pulls along the line; the pulley's own weight
+                        // acts along −y.
+                        pull: t.counterweight * scene.gravity - p.mass * scene.gravity * dir.y,
+                        travel_min: t.travel_min,
+                        travel_max: t.travel_max,
+                    }
+                }),
+                drive: p.drive.clone(),
+                brake: p.brake.clone(),
+                window_margin: l0,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,126 @@
+//! The stable step of central differences, from a Gershgorin bound of each degree of
+//! freedom's stiffness.
+
+use super::{Model, Stage};
+use crate::error::{BeltError, BeltResult};
+
+/// A stable step and the stiffness bounds it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StableStep {
+    /// Time step in use, s.
+    pub dt: f64,
+    /// Estimated critical (stability-limit) time step, s.
+    pub dt_limit: f64,
+    /// Which term sets the limit.
+    pub dt_cause: String,
+    /// Gershgorin bound of the stiffness seen by each node, N/m.
+    pub node_stiffness_bound: Vec<f64>,
+    /// Same bound for each takeup's translation, N/m (0 for fixed pulleys).
+    pub takeup_stiffness_bound: Vec<f64>,
+}
+
+impl Model {
+    /// Estimate the critical step of central differences from a Gershgorin bound of each
+    /// degree of freedom's stiffness: ω² ≤ K/m and Δt_crit = (2/ω)(√(1+ζ²) − ζ).
+    ///
+    /// Per node, K sums the axial row 2(k_{i−1}+k_i) (exact for a uniform chain, whose
+    /// highest mode has ω = 2√(k/m)), the bending row 16·k_θ/l² (zig-zag mode), and the
+    /// stiffest contact a node may meet (pulley or idler penalty). Takeups add the contact
+    /// stiffness of every node that can sit on their wrap. Every contact stiffness is
+    /// taken times `contact_scale` (1 for the model's own step; the relaxation's
+    /// continuation asks for softer ones). The step is the scene's `solver.time_step`
+    /// (an error above the limit) or `solver.time_step_fraction` of the limit.
+    pub fn stable_step(&self, contact_scale: f64) -> BeltResult<StableStep> {
+        let n = self.nodes;
+        let k_contact = self
+            .pulleys
+            .iter()
+            .map(|p| (p.contact_stiffness * contact_scale, p.contact_damping))
+            .chain(
+                self.idlers
+                    .iter()
+                    .map(|d| (d.contact_stiffness * contact_scale, d.contact_damping)),
+            )
+            .fold((0.0f64, 0.0f64), |acc, (k, c)| (acc.0.max(k), acc.1.max(c)));
+        let mut limit = f64::INFINITY;
+        let mut cause = String::new();
+        let mut node_stiffness_bound = vec![0.0; n];
+        for (i, bound) in node_stiffness_bound.iter_mut().enumerate() {
+            let prev = (i + n - 1) % n;
+            let next = (i + 1) % n;
+            let k_ax = 2.0 * (self.axial_stiffness[prev] + self.axial_stiffness[i]);
+            let c_ax = 2.0 * (self.axial_damping[prev] + self.axial_damping[i]);
+            let l = 0.5 * (self.rest_length[prev] + self.rest_length[i]);
+            let k_bend = if self.has_stage(Stage::Bending) {
+                (self.bending_stiffness[prev]
+                    + 4.0 * self.bending_stiffness[i]
+                    + self.bending_stiffness[next])
+                    * 16.0
+                    / 6.0
+                    / (l * l)
+            } else {
+                0.0
+            };
+            let k_total = k_ax + k_bend + k_contact.0;
+            let c_total = c_ax + k_contact.1;
+            *bound = k_total;
+            // The belt-only mass: loads only add mass to a node, which lowers its ω, so the
+            // limit found here holds whatever material the node carries during a run.
+            let m = self.mass[i];
+            let omega = (k_total / m).sqrt();
+            let zeta = c_total / (2.0 * m * omega);
+            let dt = 2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta);
+            if dt < limit {
+                limit = dt;
+                let dominant = if k_contact.0 >= k_ax.max(k_bend) {
+                    "contact"
+                } else if k_ax >= k_bend {
+                    "axial"
+                } else {
+                    "bending"
+                };
+                cause = format!(
+                    "{dominant} stiffness at node {i}: K = {k_total:.4e} N/m on {m:.4e} kg"
+                );
+            }
+        }
+        let mut takeup_stiffness_bound = vec![0.0; self.pulleys.len()];
+        for (j, p) in self.pulleys.iter().enumerate() {
+            let contact_stiffness = p.contact_stiffness * contact_scale;
+            if let (Some(t), true) = (&p.takeup, contact_stiffness > 0.0) {
+                let wrap = self.path.wrap_angles[j];
+                let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
+                let k = nodes_on_wrap * contact_stiffness;
+                takeup_stiffness_bound[j] = k;
+                let omega = (k / t.moving_mass).sqrt();
+                let c = nodes_on_wrap * p.contact_damping;
+                let zeta = c / (2.0 * t.moving_mass * omega);
+                let dt = 2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta);
+                if dt < limit {
+                    limit = dt;
+                    cause = format!("contact stiffness on the takeup {}", p.name);
+                }
+            }
+        }
+        let dt = match self.scene.solver.time_step {
+            Some(dt) => {
+                if dt > limit {
+                    return Err(BeltError::TimeStepTooLarge {
+                        requested: dt,
+                        limit,
+                        cause,
+                    });
+                }
+                dt
+            }
+            None => self.scene.solver.time_step_fraction * limit,
+        };
+        Ok(StableStep {
+            dt,
+            dt_limit: limit,
+            dt_cause: cause,
+            node_stiffness_bound,
+            takeup_stiffness_bound,
+        })
+    }
+}

@@ -1,0 +1,123 @@
+//! Sampling the state into the recording, and the energies (computed only when asked:
+//! [`super::Channels::energy`] or [`Simulation::current_energies`]).
+
+use super::Energies;
+use crate::model::Stage;
+use crate::simulation::Simulation;
+use crate::state::Rigid;
+
+impl Simulation {
+    /// Energies at the current state; call right after an evaluation (uses the
+    /// accelerations to centre the half-step velocities on t).
+    pub(crate) fn energies(&self) -> Energies {
+        let (m, s, sc) = (&self.model, &self.state, &self.scratch);
+        let half = 0.5 * m.dt;
+        let mut e = Energies {
+            drive_work: s.drive_work,
+            ..Default::default()
+        };
+        let n = m.nodes;
+        for i in 0..n {
+            let v = s.velocity[i] + sc.force[i] * (half * self.inertia.inv_mass[i]);
+            e.kinetic += 0.5 * s.node_mass[i] * v.norm_squared();
+            if m.gravity > 0.0 {
+                e.gravity += s.node_mass[i] * m.gravity * s.position[i].y;
+            }
+            let j = (i + 1) % n;
+            let stretch = (s.position[j] - s.position[i]).norm() - m.rest_length[i];
+            if !(m.tension_only && stretch < 0.0) {
+                e.strain += 0.5 * m.axial_stiffness[i] * stretch * stretch;
+            }
+        }
+        if m.has_stage(Stage::Bending) {
+            for i in 0..n {
+                let theta = crate::forces::bending_angle(&s.position, i);
+                e.bending += 0.5 * m.bending_stiffness[i] * theta * theta;
+            }
+        }
+        // Kinetic energy of every rigid degree of freedom at t, with its physical inertia.
+        for &d in &m.dofs.rigid {
+            let mass = self.inertia.rigid(m, d);
+            let w = s.rigid_speed(d) + half * sc.rigid_force(m, d) / mass;
+            e.kinetic += 0.5 * mass * w * w;
+        }
+        for (j, p) in m.pulleys.iter().enumerate() {
+            if let Some(t) = &p.takeup {
+                e.gravity -= t.pull * s.takeup_travel[j];
+            }
+            for &d in &sc.contacts[j].penetration {
+                e.contact += 0.5 * p.contact_stiffness * d * d;
+            }
+        }
+        for (k, d) in m.idlers.iter().enumerate() {
+            let c = &sc.idler_contacts[k];
+            if c.active {
+                e.contact += 0.5 * d.contact_stiffness * c.penetration * c.penetration;
+            }
+        }
+        e
+    }
+
+    /// Append the current state to the recording; call right after an evaluation.
+    pub(crate) fn sample(&mut self) {
+        let energies = self.recording.channels.energy.then(|| self.energies());
+        let (m, s, sc) = (&self.model, &self.state, &self.scratch);
+        let r = &mut self.recording;
+        let half = 0.5 * m.dt;
+        // The speed of a rigid degree of freedom at t (centred from the half step).
+        let speed =
+            |d: Rigid| s.rigid_speed(d) + half * sc.rigid_force(m, d) / self.inertia.rigid(m, d);
+        r.time.push(s.time);
+        if r.channels.tension {
+            r.tension.extend_from_slice(&sc.tension);
+        }
+        if r.channels.node_position {
+            for x in &s.position {
+                r.node_position.extend_from_slice(&[x.x, x.y]);
+            }
+        }
+        if r.channels.node_velocity {
+            for (v, (f, im)) in s
+                .velocity
+                .iter()
+                .zip(sc.force.iter().zip(&self.inertia.inv_mass))
+            {
+                let w = v + f * (half * im);
+                r.node_velocity.extend_from_slice(&[w.x, w.y]);
+            }
+        }
+        for j in 0..m.pulleys.len() {
+            let c = s.pulley_center(m, j);
+            r.pulley_position.extend_from_slice(&[c.x, c.y]);
+            r.takeup_travel.push(s.takeup_travel[j]);
+            r.pulley_speed.push(speed(Rigid::Pulley(j)));
+            r.friction_torque.push(sc.friction[j].torque);
+            r.drive_torque.push(sc.drive_torque[j]);
+            r.brake_torque.push(sc.brake_torque[j]);
+            r.pulley_force
+                .extend_from_slice(&[sc.pulley_force[j].x, sc.pulley_force[j].y]);
+            r.normal_force
+                .push(sc.contacts[j].normal_force.iter().sum());
+            r.friction_force.push(sc.friction[j].tangential);
+            r.contact_nodes.push(sc.contacts[j].len() as f64);
+            r.slipping_nodes.push(sc.friction[j].slipping as f64);
+        }
+        for k in 0..m.idlers.len() {
+            let c = &sc.idler_contacts[k];
+            r.idler_force
+                .push(if c.active { c.normal_force } else { 0.0 });
+            r.idler_speed.push(speed(Rigid::Idler(k)));
+        }
+        if let Some(e) = energies {
+            r.energy.extend_from_slice(&[
+                e.kinetic,
+                e.strain,
+                e.bending,
+                e.gravity,
+                e.contact,
+                e.total(),
+                e.drive_work,
+            ]);
+        }
+    }
+}
