@@ -298,6 +298,9 @@ class Pulley:
             refused, having no normal force to act with); with 0 on every pulley no
             ``pulley_contact`` stage is compiled.
         contact_damping: normal contact damping, N*s/m. Default 0.
+        bearing_damping: linear viscous drag in the bearings, N*m*s/rad, >= 0: a torque
+            -b*omega on the pulley (a free pulley spins down as omega0*exp(-b*t/I); useful
+            for coasting stops). Default 0 (no ``bearing_drag`` stage is compiled).
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
@@ -312,6 +315,7 @@ class Pulley:
     friction: Optional[Friction] = None
     contact_stiffness: float = 1e9
     contact_damping: float = 0.0
+    bearing_damping: float = 0.0
     takeup: Optional[Takeup] = None
     drive: Optional[Drive] = None
     brake: Optional[Brake] = None
@@ -331,6 +335,7 @@ class Pulley:
             "friction": None if self.friction is None else self.friction.to_dict(),
             "contact_stiffness": self.contact_stiffness,
             "contact_damping": self.contact_damping,
+            "bearing_damping": self.bearing_damping,
             "takeup": None if self.takeup is None else self.takeup.to_dict(),
             "drive": None if self.drive is None else self.drive.to_dict(),
             "brake": None if self.brake is None else self.brake.to_dict(),

@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 2; version 1 is still read)
+//! # Format (version 3; versions 1 and 2 are still read)
 //!
 //! All integers are little-endian; every `f64` is stored as its raw IEEE-754 bits
 //! (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (2) |
+//! | 8..12 | format version, `u32` (3) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -31,6 +31,9 @@
 //! (belt and material) and each load's zone edges (start element, end element, start and
 //! end material coordinates). A version-1 file reads as a scene without resistance or
 //! loads, whose node masses are the belt's.
+//!
+//! Version 3 adds, to each pulley, its bearing damping (after its contact damping); a
+//! version-1 or 2 file reads as pulleys without bearing drag.
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -56,7 +59,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// Oldest version this build reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 const HEADER_BYTES: usize = 24;
@@ -555,6 +558,7 @@ fn write_scene(w: &mut Writer, s: &Scene) {
         w.friction(&p.friction);
         w.f64(p.contact_stiffness);
         w.f64(p.contact_damping);
+        w.f64(p.bearing_damping);
         match &p.takeup {
             None => w.u8(0),
             Some(t) => {
@@ -663,6 +667,11 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
         let friction = r.friction(&f("friction"))?;
         let contact_stiffness = r.f64(&f("contact_stiffness"))?;
         let contact_damping = r.f64(&f("contact_damping"))?;
+        let bearing_damping = if r.version >= 3 {
+            r.f64(&f("bearing_damping"))?
+        } else {
+            0.0
+        };
         let takeup = if r.bool(&f("takeup"))? {
             Some(TakeupSpec {
                 direction: [r.f64(&f("takeup"))?, r.f64(&f("takeup"))?],
@@ -721,6 +730,7 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
             friction,
             contact_stiffness,
             contact_damping,
+            bearing_damping,
             takeup,
             drive,
             brake,

@@ -185,6 +185,7 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::IdlerContact => crate::contact::stage::idler_contact(cx),
             Stage::RunningResistance => crate::friction::stage::running_resistance(cx),
             Stage::Drives => crate::drives::torque::torque_drives(cx),
+            Stage::BearingDrag => crate::drives::bearing::bearing_drag(cx),
             Stage::PulleyFriction => crate::friction::stage::pulley_friction(cx),
             Stage::IdlerFriction => crate::friction::stage::idler_friction(cx),
             Stage::SpeedDrives => crate::drives::hold::speed_drives(cx),

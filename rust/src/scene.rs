@@ -362,6 +362,10 @@ pub struct PulleySpec {
     pub contact_stiffness: f64,
     /// Normal contact damping, N·s/m (not in the thesis). Default 0.
     pub contact_damping: f64,
+    /// Linear viscous drag in the bearings, N·m·s/rad: a torque −b·ω on the pulley (a free
+    /// pulley spins down as ω₀·exp(−b·t/I)). Zero compiles no `bearing_drag` stage.
+    /// Default 0.
+    pub bearing_damping: f64,
     /// Gravity takeup, if this pulley translates. Default `None`.
     pub takeup: Option<TakeupSpec>,
     /// Drive torque, if any. Default `None`.
@@ -382,6 +386,7 @@ impl Default for PulleySpec {
             friction: FrictionModel::None,
             contact_stiffness: 1e9,
             contact_damping: 0.0,
+            bearing_damping: 0.0,
             takeup: None,
             drive: None,
             brake: None,
@@ -745,6 +750,7 @@ impl Scene {
             }
             check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
             check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
+            check_non_negative(&format!("{f}.bearing_damping"), p.bearing_damping)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
             if p.contact_stiffness == 0.0 && !p.friction.is_none() {
                 // Friction needs a normal force: it would be silently ignored.

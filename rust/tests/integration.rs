@@ -2,6 +2,7 @@
 #![allow(clippy::needless_range_loop)]
 mod common;
 
+mod bearing_drag;
 mod case_h_statics;
 mod checkpoint;
 mod friction_contact;

@@ -3,10 +3,12 @@
 //! takeups.
 //!
 //! - [`torque`]: the `drives` stage, T(t, ω).
+//! - [`bearing`]: the `bearing_drag` stage, viscous drag −b·ω in the pulley bearings.
 //! - [`hold`]: the `speed_drives` and `brakes` stages, prescribed motion within a torque.
 //! - [`takeup`]: the gravity takeup's translation, moved by the integrator.
 //! - [`start_curve`]: conveyor starting curves (Harrison, Nordell, cubic, linear).
 
+pub mod bearing;
 pub mod hold;
 pub mod start_curve;
 pub mod takeup;

@@ -30,6 +30,8 @@ pub struct PulleyModel {
     pub radius: f64,
     /// Polar inertia including drive inertia, kg·m².
     pub inertia: f64,
+    /// Linear viscous drag in the bearings, N·m·s/rad (0: none).
+    pub bearing_damping: f64,
     /// Contact stiffness, N/m.
     pub contact_stiffness: f64,
     /// Contact damping, N·s/m.
@@ -87,6 +89,7 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 center: Vector2::new(p.center[0], p.center[1]),
                 radius: p.radius,
                 inertia: p.polar_inertia() + drive_inertia,
+                bearing_damping: p.bearing_damping,
                 contact_stiffness: p.contact_stiffness,
                 contact_damping: p.contact_damping,
                 friction: p.friction,

@@ -102,6 +102,20 @@ impl Model {
                 }
             }
         }
+        // Bearing drag: the explicit update ω ← ω·(1 − b·Δt/I) turns the spin around above
+        // Δt = I/b (a drag may only slow a pulley down), and is unstable above 2·I/b.
+        for p in &self.pulleys {
+            if p.bearing_damping > 0.0 {
+                let dt = p.inertia / p.bearing_damping;
+                if dt < limit {
+                    limit = dt;
+                    cause = format!(
+                        "bearing damping of pulley {}: b = {:.4e} N·m·s/rad on I = {:.4e} kg·m²",
+                        p.name, p.bearing_damping, p.inertia
+                    );
+                }
+            }
+        }
         let dt = match self.scene.solver.time_step {
             Some(dt) => {
                 if dt > limit {

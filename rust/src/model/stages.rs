@@ -27,6 +27,8 @@ pub enum Stage {
     RunningResistance,
     /// Drive torques T(t, ω) (thesis eq. 4.66).
     Drives,
+    /// Linear viscous drag in the pulley bearings, −b·ω (`crate::drives::bearing`).
+    BearingDrag,
     /// Stick-force friction between belt and pulleys (thesis eq. 4.76–4.94, figure 4.9).
     PulleyFriction,
     /// Stick-force friction between belt and idlers (thesis eq. 4.103–4.117, re-derived).
@@ -51,6 +53,7 @@ impl Stage {
             Stage::IdlerContact => "idler_contact",
             Stage::RunningResistance => "running_resistance",
             Stage::Drives => "drives",
+            Stage::BearingDrag => "bearing_drag",
             Stage::PulleyFriction => "pulley_friction",
             Stage::IdlerFriction => "idler_friction",
             Stage::SpeedDrives => "speed_drives",
@@ -90,6 +93,9 @@ pub(super) fn select(
     }
     if pulleys.iter().any(|p| p.drive.is_some()) {
         stages.push(Stage::Drives);
+    }
+    if pulleys.iter().any(|p| p.bearing_damping > 0.0) {
+        stages.push(Stage::BearingDrag);
     }
     if pulleys.iter().any(|p| !p.friction.is_none()) {
         stages.push(Stage::PulleyFriction);

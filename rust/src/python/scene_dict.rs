@@ -435,6 +435,7 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
             friction: friction(&mut p)?,
             contact_stiffness: p.f64("contact_stiffness", pd.contact_stiffness)?,
             contact_damping: p.f64("contact_damping", pd.contact_damping)?,
+            bearing_damping: p.f64("bearing_damping", pd.bearing_damping)?,
             takeup,
             drive,
             brake,

@@ -59,6 +59,7 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
         d.set_item("friction", friction(py, &p.friction)?)?;
         d.set_item("contact_stiffness", p.contact_stiffness)?;
         d.set_item("contact_damping", p.contact_damping)?;
+        d.set_item("bearing_damping", p.bearing_damping)?;
         let takeup = match &p.takeup {
             None => None,
             Some(t) => {
