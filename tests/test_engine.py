@@ -9,7 +9,7 @@ from beltrs.scenes import hustrulid_loop
 
 def test_stages_follow_the_scene():
     sim = beltrs.Simulation(hustrulid_loop())
-    assert sim.stages == ["gravity", "axial", "bending", "pulley_contact", "takeups"]
+    assert sim.stages == ["axial", "bending", "pulley_contact"]
     sim = beltrs.Simulation(hustrulid_loop(bending=False, damping_ratio=0.1, friction=beltrs.Friction(0.3)))
     assert "bending" not in sim.stages
     assert "axial_damped" in sim.stages and "axial" not in sim.stages

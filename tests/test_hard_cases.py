@@ -376,7 +376,7 @@ def test_takeup_slams_into_its_stop_during_a_start():
         scene.pulleys[0].drive = Drive.constant(1e6)
         sim = beltrs.Simulation(scene)
         sim.stabilise()
-        return sim, sim.run(3.0, record_every=1, tension=False, node_position=False)
+        return sim, sim.run(3.0, record_every=1, tension=False, node_position=False, energy=True)
 
     _, free = start(np.inf)
     stop = 3.40  # m of travel from the placement; static equilibrium is at 3.347 m
@@ -558,7 +558,9 @@ def test_long_undamped_run_conserves_energy(nodes):
     # 10⁵ steps with no damping, friction or drive (the 10⁴ nodes are marked slow,
     # ~1.5 min; CI runs both). The counterweight step sets the loop swinging at 0.28 Hz.
     sim = counterweight_step(nodes, 0.0)
-    res = sim.run(100_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True)
+    res = sim.run(
+        100_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True
+    )
     assert res.time[-1] == pytest.approx(100_000 * sim.dt, rel=1e-9)
     e = res.energy
     total = e[:, res.energy_columns.index("total")]
@@ -573,7 +575,9 @@ def test_long_damped_run_loses_energy_monotonically():
     # The same with 10 % axial damping: with nothing driving, the total energy sampled every
     # 100 steps never rises (not even by the staggered-grid offset: damping outweighs it).
     sim = counterweight_step(2000, 0.1)
-    res = sim.run(20_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True)
+    res = sim.run(
+        20_000 * sim.dt, record_every=100, tension=False, node_position=False, node_velocity=False, energy=True
+    )
     total = res.energy[:, res.energy_columns.index("total")]
     assert np.all(np.diff(total) < 0)
 

@@ -204,10 +204,13 @@ class Simulation:
         """Run for ``duration`` seconds and return what was recorded.
 
         Args:
-            duration: simulated time, s (rounded to whole steps).
+            duration: simulated time, s. The run ends at ``time + duration`` exactly: the
+                integrator takes whole steps and then one shortened step, and the last
+                sample is taken there.
             record_every: sample every this many steps. Default: every step unless
                 ``record_interval`` is given.
-            record_interval: sample about every this many seconds (rounded to whole steps).
+            record_interval: sample about every this many seconds (rounded to whole steps),
+                and at the end of the run (the last interval may be shorter).
             tension, node_position, node_velocity: record these large arrays. Default True.
             energy: record the energies (``Result.energy``), computed at each sample from
                 every node and element. Default False (opt-in: they cost a pass over the
@@ -250,7 +253,8 @@ class Simulation:
             if not (np.isfinite(record_interval) and record_interval > 0):
                 raise _beltrs.SceneError(f"record_interval = {record_interval}: must be > 0 (s)")
             every = max(1, min(int(round(record_interval / self.dt)), _MAX_STEPS))
-        steps = int(round(duration / self.dt))
+        # Whole steps and at most one shortened step (for the bar and the bound).
+        steps = int(np.ceil(duration / self.dt - 1e-9))
         if steps > _MAX_STEPS:
             raise _beltrs.SceneError(
                 f"duration = {duration}: {steps:.3e} steps of {self.dt:.3e} s, more than {_MAX_STEPS:.3e}"
@@ -271,11 +275,11 @@ class Simulation:
             raise _beltrs.SceneError(f"checkpoint_interval = {checkpoint_interval}: must be ≥ 0 (s)")
 
         core = self._core
-        target = int(core.step_count) + steps
+        end = self.time + duration
         t0 = _time.perf_counter()
         last_checkpoint = t0
         interrupted = False
-        bar = make_bar(progress, steps, self.time + steps * self.dt)
+        bar = make_bar(progress, steps, end)
         try:
             core.begin_recording(every, tension, node_position, node_velocity, max_samples, energy)
             try:
@@ -283,13 +287,14 @@ class Simulation:
                 # Ctrl-C in between them; each chunk runs in Rust without the GIL, and a
                 # chunk always completes, so the state is consistent when Ctrl-C lands.
                 chunk = 64
-                while int(core.step_count) < target:
-                    n = min(chunk, target - int(core.step_count))
+                done = False
+                while not done:
+                    before = int(core.step_count)
                     c0 = _time.perf_counter()
-                    core.advance(n)
+                    done = core.advance_to(end, chunk)
                     now = _time.perf_counter()
                     chunk = _next_chunk(chunk, now - c0)
-                    bar.update(n, self.time)
+                    bar.update(int(core.step_count) - before, self.time)
                     if checkpoint is not None and now - last_checkpoint >= checkpoint_interval:
                         self.save_checkpoint(checkpoint)
                         last_checkpoint = _time.perf_counter()

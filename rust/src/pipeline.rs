@@ -143,9 +143,13 @@ pub struct StageContext<'a> {
     pub inertia: &'a mut Inertia,
     /// Which optional effects apply.
     pub effects: Effects,
-    /// The step the coming integration takes, s (the model's in dynamics; the
-    /// relaxation's own otherwise). Friction and prescribed speeds are solved for it.
+    /// The velocity update (kick) of the coming integration, s: the model's step in
+    /// dynamics, the relaxation's own otherwise, and (Δt + Δt_end)/2 before a final
+    /// shortened step. Friction and prescribed speeds are solved for it.
     pub dt: f64,
+    /// The position update (drift) of the coming integration, s: equal to `dt` but before
+    /// a shortened step. A speed-controlled drive aims at its curve half of it ahead.
+    pub drift: f64,
     /// Factor on every contact stiffness (1 in dynamics; the relaxation's continuation
     /// softens the contact with it, without touching the model).
     pub contact_scale: f64,

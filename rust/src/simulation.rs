@@ -135,7 +135,7 @@ impl Simulation {
     /// Evaluate the forces for a step `dt`; with `axial_done`, the axial pass has run
     /// already (fused with the last integration) and the other stages add to it.
     pub(crate) fn evaluate_after(&mut self, effects: Effects, dt: f64, axial_done: bool) {
-        self.evaluate_scaled(effects, dt, 1.0, axial_done);
+        self.evaluate_full(effects, dt, dt, 1.0, axial_done);
     }
 
     /// [`Simulation::evaluate_after`] with every contact stiffness scaled by
@@ -147,13 +147,27 @@ impl Simulation {
         contact_scale: f64,
         axial_done: bool,
     ) {
+        self.evaluate_full(effects, dt, dt, contact_scale, axial_done);
+    }
+
+    /// The force evaluation with every setting: `kick` and `drift` of the coming
+    /// integration (see [`StageContext`]), `contact_scale`, `axial_done`.
+    pub(crate) fn evaluate_full(
+        &mut self,
+        effects: Effects,
+        kick: f64,
+        drift: f64,
+        contact_scale: f64,
+        axial_done: bool,
+    ) {
         let mut cx = StageContext {
             model: &self.model,
             state: &mut self.state,
             scratch: &mut self.scratch,
             inertia: &mut self.inertia,
             effects,
-            dt,
+            dt: kick,
+            drift,
             contact_scale,
         };
         pipeline::evaluate(&mut cx, axial_done, self.profile.as_deref_mut());
@@ -232,18 +246,63 @@ impl Simulation {
         })
     }
 
-    /// Close a recording: sample the final state if it falls on the recording grid.
+    /// Advance towards simulated time `end` (s), recording as set by
+    /// [`Simulation::begin_recording`], taking at most `max_steps` steps in this call (so
+    /// that a caller can check for Ctrl-C or save a checkpoint between calls). Returns
+    /// true once the state is at `end` exactly: the integrator owns its steps (central
+    /// differences take whole steps and then one shortened step onto `end`). On a blow-up
+    /// the recording keeps everything sampled before it.
+    pub fn advance_to(&mut self, end: f64, max_steps: u64) -> BeltResult<bool> {
+        if !end.is_finite() || end < self.state.time {
+            return Err(BeltError::invalid(
+                "end time",
+                end,
+                format!(
+                    "must be finite and not before the current time {} s",
+                    self.state.time
+                ),
+            ));
+        }
+        let record = |sim: &mut Self| {
+            sim.record_if_due();
+            sim.record_counter += 1;
+        };
+        match self.model.integrator {
+            Integrator::CentralDifference => self.central_difference_to(end, max_steps, record),
+        }
+    }
+
+    /// Close a recording: sample the final state (the end of the run), which the
+    /// recording's grid may not hold; the last interval is then shorter.
     pub fn end_recording(&mut self) {
+        self.evaluate(Effects::ALL);
+        if self.recording.len() >= self.max_samples {
+            self.recording.decimate();
+            self.record_every = self.record_every.saturating_mul(2);
+        }
+        self.recording.reserve_one(self.max_samples);
+        self.sample();
+    }
+
+    /// Close a recording cut short (e.g. by Ctrl-C): sample the final state only if it is
+    /// on the recording grid, so every sample stays on it.
+    pub fn end_recording_on_grid(&mut self) {
         if self.record_counter.is_multiple_of(self.record_every) {
             self.evaluate(Effects::ALL);
             self.record_if_due();
         }
     }
 
-    /// Run for `duration` seconds (rounded to whole steps), sampling every `every` steps.
-    /// The recording is unbounded here; use [`Simulation::begin_recording`] with a bound for
-    /// long runs.
-    pub fn run(&mut self, duration: f64, every: u64, channels: Channels) -> BeltResult<&Recording> {
+    /// Run for `duration` seconds, recording about every `interval` seconds (rounded to
+    /// whole steps, at least one) and at the end, which lands exactly at the current time
+    /// plus `duration`. The recording is unbounded here; use
+    /// [`Simulation::begin_recording`] with a bound for long runs.
+    pub fn run(
+        &mut self,
+        duration: f64,
+        interval: f64,
+        channels: Channels,
+    ) -> BeltResult<&Recording> {
         if !(duration.is_finite() && duration >= 0.0) {
             return Err(BeltError::invalid(
                 "duration",
@@ -251,9 +310,18 @@ impl Simulation {
                 "must be a finite number ≥ 0",
             ));
         }
-        let steps = (duration / self.model.dt).round() as u64;
+        if !(interval.is_finite() && interval > 0.0) {
+            return Err(BeltError::invalid(
+                "interval",
+                interval,
+                "must be a finite number > 0 (s)",
+            ));
+        }
+        let every = (interval / self.model.dt)
+            .round()
+            .clamp(1.0, u64::MAX as f64) as u64;
         self.begin_recording(channels, every, usize::MAX);
-        self.advance(steps)?;
+        self.advance_to(self.state.time + duration, u64::MAX)?;
         self.end_recording();
         Ok(&self.recording)
     }

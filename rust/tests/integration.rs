@@ -10,4 +10,5 @@ mod kernels;
 mod load_resistance;
 mod recorder;
 mod recording_params;
+mod run_contract;
 mod speed_drive;

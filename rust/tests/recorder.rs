@@ -3,18 +3,26 @@ use crate::common::case_h;
 use beltrs::record::Channels;
 use beltrs::Simulation;
 
+/// Every channel, energies included (they are opt-in).
+const ALL: Channels = Channels {
+    tension: true,
+    node_position: true,
+    node_velocity: true,
+    energy: true,
+};
+
 #[test]
 fn bounded_recording_decimates_to_a_uniform_grid() {
     let scene = case_h(89);
     let mut full = Simulation::new(&scene).unwrap();
-    full.begin_recording(Channels::default(), 1, usize::MAX);
+    full.begin_recording(ALL, 1, usize::MAX);
     full.advance(1000).unwrap();
     full.end_recording();
     assert_eq!(full.recording.len(), 1001);
 
     let max = 10;
     let mut bounded = Simulation::new(&scene).unwrap();
-    bounded.begin_recording(Channels::default(), 1, max);
+    bounded.begin_recording(ALL, 1, max);
     bounded.advance(1000).unwrap();
     bounded.end_recording();
     let r = &bounded.recording;
@@ -22,10 +30,12 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
     // 1000 steps into 10 samples: the interval doubled to 128 steps (1000/128 → 8 intervals).
     let every = bounded.record_every() as usize;
     assert_eq!(every, 128);
-    // Kept samples are exact copies of the unbounded ones at every `every`-th step.
+    // Kept samples are exact copies of the unbounded ones at every `every`-th step, and the
+    // last one is the end of the run (step 1000, off the doubled grid).
     let n = full.recording.nodes;
+    let last = r.len() - 1;
     for (k, &t) in r.time.iter().enumerate() {
-        let i = k * every;
+        let i = if k == last { 1000 } else { k * every };
         assert_eq!(t.to_bits(), full.recording.time[i].to_bits());
         assert_eq!(
             r.tension[k * n..(k + 1) * n],
@@ -36,8 +46,10 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
             full.recording.energy[i * 7..(i + 1) * 7]
         );
     }
-    // The whole run is covered: the last sample is within one interval of the end.
-    assert!(full.state.step as usize - (r.len() - 1) * every < every);
+    // The whole run is covered: the grid reaches within one interval of the end, and the
+    // end itself is sampled.
+    assert!(1000 - (last - 1) * every <= every);
+    assert_eq!(r.time[last].to_bits(), bounded.state.time.to_bits());
     // Memory: capacity never grew past the bound.
     let per = r.bytes_per_sample();
     assert_eq!(per, 8 * (8 + 5 * 89 + 13 * 2));

@@ -10,8 +10,8 @@ use crate::pipeline::StageContext;
 /// Speed-controlled drives: the torque that makes each pulley follow its starting curve
 /// this step, within the motor's limit; it adds to the drive's load torque −b·ω.
 pub fn speed_drives(cx: &mut StageContext<'_>) {
-    let dt = cx.dt;
-    hold_pulleys(cx, |p, time| p.speed_hold(time, dt), false);
+    let drift = cx.drift;
+    hold_pulleys(cx, |p, time| p.speed_hold(time, drift), false);
 }
 
 /// Coulomb brakes with holding at rest: never reverse the motion.

@@ -37,7 +37,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
     if !cx.effects.friction {
         return;
     }
-    let (friction_dt, dt, drives) = (cx.friction_dt(), cx.dt, cx.effects.drives);
+    let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
     let (m, s, sc) = (cx.model, &*cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
         let FrictionModel::StickForce {
@@ -59,7 +59,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             mu_static: static_coefficient,
             mu_kinetic: kinetic_coefficient,
             prescribed: if drives {
-                p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, dt))
+                p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, drift))
             } else {
                 None
             },

@@ -160,7 +160,21 @@ impl Simulation {
                 tension,
             ),
         };
-        let sc = &self.scratch;
+        let check = self.integrate_rigid(dt, dt);
+        let s = &mut self.state;
+        s.time += dt;
+        s.step += 1;
+        if !(nodes_finite && (check + s.drive_work).is_finite()) {
+            return Err(self.locate_non_finite());
+        }
+        Ok(())
+    }
+
+    /// The central-difference update of every rigid degree of freedom of the layout:
+    /// speed += kick·F/m (or the held speed), coordinate += drift·speed, the drives' work,
+    /// the takeups' stops. Returns a sum that is finite only if every value is.
+    fn integrate_rigid(&mut self, kick: f64, drift: f64) -> f64 {
+        let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
         let mut check = 0.0;
         for &d in &m.dofs.rigid {
             let force = sc.rigid_force(m, d);
@@ -173,14 +187,14 @@ impl Simulation {
                 Rigid::Pulley(j) => sc.held[j],
                 _ => None,
             };
-            let new = held.unwrap_or(old + dt * force / mass);
+            let new = held.unwrap_or(old + kick * force / mass);
             *speed = new;
             if let Some(q) = coordinate {
-                *q += new * dt;
+                *q += new * drift;
             }
             match d {
                 Rigid::Pulley(j) => {
-                    s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * dt;
+                    s.drive_work += sc.drive_torque[j] * 0.5 * (old + new) * drift;
                     check += new + s.pulley_angle[j];
                 }
                 Rigid::Takeup(j) => {
@@ -196,13 +210,7 @@ impl Simulation {
                 Rigid::Idler(_) => check += new,
             }
         }
-        s.time += dt;
-        s.step += 1;
-        check += s.drive_work;
-        if !(nodes_finite && check.is_finite()) {
-            return Err(self.locate_non_finite());
-        }
-        Ok(())
+        check
     }
 
     /// The first non-finite quantity of the state, as an error naming time, step, place
@@ -283,6 +291,117 @@ impl Simulation {
             self.integrate_then(dt, axial_done.then_some(tensions))?;
         }
         Ok(())
+    }
+}
+
+/// A remainder below this fraction of a step at the end of a run (plus the rounding the
+/// sum of the steps can carry, see [`Simulation::central_difference_to`]) is not time to
+/// simulate: the run ends there without a shortened step.
+pub const END_SNAP: f64 = 1e-9;
+
+impl Simulation {
+    /// Central differences towards `end` (s), at most `max_steps` steps in this call:
+    /// whole steps while one fits, then one shortened step onto `end` and the return to
+    /// the scheme's half-step velocities ([`Simulation::recentre`]). `between` runs after
+    /// each force evaluation, as in [`Simulation::central_difference_steps`]. Returns
+    /// true once at `end` (the state's time is then `end` exactly).
+    pub(crate) fn central_difference_to(
+        &mut self,
+        end: f64,
+        max_steps: u64,
+        mut between: impl FnMut(&mut Self),
+    ) -> BeltResult<bool> {
+        let dt = self.model.dt;
+        // The time is a running sum of steps: after n steps it carries up to n rounding
+        // errors of half an ulp of the time each. A remainder within that (and
+        // END_SNAP·Δt) is rounding, not time to simulate: a step that falls short of
+        // `end` by it alone counts as fitting, and no shortened step follows.
+        let rounding = END_SNAP * dt + self.state.step as f64 * f64::EPSILON * end.abs();
+        let whole = ((end - self.state.time + rounding) / dt).floor().max(0.0);
+        let steps = if whole < max_steps as f64 {
+            whole as u64
+        } else {
+            max_steps
+        };
+        self.central_difference_steps(steps, true, &mut between)?;
+        if (steps as f64) < whole {
+            return Ok(false);
+        }
+        let rest = end - self.state.time;
+        if rest > rounding {
+            // Velocities v(t − Δt/2) → v(t + r/2): a kick of (Δt + r)/2, a drift of r.
+            let kick = 0.5 * (dt + rest);
+            self.evaluate_full(Effects::ALL, kick, rest, 1.0, false);
+            between(self);
+            self.integrate_short(kick, rest)?;
+            self.state.time = end;
+            self.recentre(rest);
+        } else {
+            self.state.time = end;
+        }
+        Ok(true)
+    }
+
+    /// A step with a kick and a drift of their own (the shortened last step of a run):
+    /// v ← v + kick·f/m, x ← x + drift·v, and the same for the rigid degrees of freedom.
+    fn integrate_short(&mut self, kick: f64, drift: f64) -> BeltResult<()> {
+        let (s, sc) = (&mut self.state, &self.scratch);
+        let mut finite = true;
+        for (((x, v), f), im) in s
+            .position
+            .iter_mut()
+            .zip(s.velocity.iter_mut())
+            .zip(&sc.force)
+            .zip(&self.inertia.inv_mass)
+        {
+            *v += f * (kick * im);
+            *x += *v * drift;
+            finite &= x.x.is_finite() && x.y.is_finite();
+        }
+        let check = self.integrate_rigid(kick, drift);
+        let s = &mut self.state;
+        s.time += drift;
+        s.step += 1;
+        if !(finite && (check + s.drive_work).is_finite()) {
+            return Err(self.locate_non_finite());
+        }
+        Ok(())
+    }
+
+    /// After a shortened step of `drift` (s) the velocities are v(t − drift/2); bring them
+    /// back to the scheme's v(t − Δt/2) with the accelerations at t:
+    /// v ← v + a(t)·(drift − Δt)/2. The next step then kicks by Δt from there, which is
+    /// the variable-step central difference's kick (drift + Δt)/2 from v(t − drift/2)
+    /// (exactly so where the forces do not depend on velocity). A pulley held by a brake or
+    /// a speed-controlled drive is put at its held speed at t − Δt/2.
+    fn recentre(&mut self, drift: f64) {
+        self.evaluate(Effects::ALL);
+        let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
+        let dt = m.dt;
+        let shift = 0.5 * (drift - dt);
+        for ((v, f), im) in s
+            .velocity
+            .iter_mut()
+            .zip(&sc.force)
+            .zip(&self.inertia.inv_mass)
+        {
+            *v += f * (shift * im);
+        }
+        for &d in &m.dofs.rigid {
+            let force = sc.rigid_force(m, d);
+            let mass = self.inertia.rigid(m, d);
+            let held = match d {
+                Rigid::Pulley(j) if sc.held[j].is_some() => {
+                    let p = &m.pulleys[j];
+                    p.brake_hold(s.time)
+                        .or_else(|| p.speed_hold(s.time - dt, dt))
+                        .map(|h| h.omega)
+                }
+                _ => None,
+            };
+            let speed = s.rigid_speed_mut(d);
+            *speed = held.unwrap_or(*speed + shift * force / mass);
+        }
     }
 }
 

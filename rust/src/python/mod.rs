@@ -279,14 +279,28 @@ impl PySimulation {
         guarded(|| py.detach(|| sim.advance(steps)).map_err(to_py))
     }
 
-    /// Close the current recording (samples the final state if it is on the grid).
-    /// `interrupted` is stored for the `interrupted` getter.
+    /// Advance towards simulated time `end` (s) into the current recording, at most
+    /// `max_steps` steps (GIL released; callers keep chunks short and check for Ctrl-C in
+    /// between). Returns True once the state is at `end` exactly (whole steps, then one
+    /// shortened step). A blow-up raises DivergenceError and keeps the recording.
+    fn advance_to(&mut self, py: Python<'_>, end: f64, max_steps: u64) -> PyResult<bool> {
+        let sim = &mut self.inner;
+        guarded(|| py.detach(|| sim.advance_to(end, max_steps)).map_err(to_py))
+    }
+
+    /// Close the current recording: sample the final state (the end of the run), or, when
+    /// `interrupted`, only if it is on the recording grid. `interrupted` is stored for the
+    /// `interrupted` getter.
     #[pyo3(signature = (interrupted=false))]
     fn end_recording(&mut self, interrupted: bool) -> PyResult<()> {
         self.interrupted = interrupted;
         let sim = &mut self.inner;
         guarded(|| {
-            sim.end_recording();
+            if interrupted {
+                sim.end_recording_on_grid();
+            } else {
+                sim.end_recording();
+            }
             Ok(())
         })
     }
