@@ -1,7 +1,7 @@
 //! The run contract in time: `run(duration)` ends at the start time plus `duration`
 //! exactly (whole steps, then one shortened central-difference step) and samples there.
 use beltrs::record::Channels;
-use beltrs::scene::{BeltParams, PulleySpec, Scene};
+use beltrs::scene::{BeltParams, DriveSpec, PulleySpec, Scene, Table};
 use beltrs::Simulation;
 
 const INERTIA: f64 = 4.0; // kg·m²
@@ -11,6 +11,12 @@ const OMEGA0: f64 = 20.0; // rad/s
 /// A free pulley (no belt contact) spinning down on its bearings, ω = ω0·e^(−b·t/I), so
 /// its angle is θ(t) = ω0·(I/b)·(1 − e^(−b·t/I)).
 fn spinning() -> Simulation {
+    spinning_with(DAMPING, None)
+}
+
+/// The free pulley with bearing damping `damping` and, if given, a drive of constant
+/// torque (N·m).
+fn spinning_with(damping: f64, torque: Option<f64>) -> Simulation {
     let pulley = |center: [f64; 2]| PulleySpec {
         center,
         radius: 0.5,
@@ -28,7 +34,11 @@ fn spinning() -> Simulation {
             pulley([0.0, 0.0]),
             PulleySpec {
                 contact_stiffness: 0.0,
-                bearing_damping: DAMPING,
+                bearing_damping: damping,
+                drive: torque.map(|t| DriveSpec {
+                    torque: Table::constant(t),
+                    ..Default::default()
+                }),
                 ..pulley([5.0, 0.0])
             },
         ],
@@ -36,7 +46,7 @@ fn spinning() -> Simulation {
         ..Default::default()
     };
     let mut sim = Simulation::new(&scene).unwrap();
-    let rate = DAMPING / INERTIA;
+    let rate = damping / INERTIA;
     sim.state.pulley_omega[1] = OMEGA0 * (0.5 * rate * sim.model.dt).exp();
     sim
 }
@@ -100,4 +110,32 @@ fn a_duration_on_the_step_grid_takes_whole_steps_only() {
         .unwrap();
     assert_eq!(sim.state.step, 1000);
     assert_eq!(sim.recording.len(), 101);
+}
+
+#[test]
+fn shortened_steps_keep_a_constant_torque_spin_up_exact() {
+    // A constant torque on a free pulley: ω = T·t/I, θ = T·t²/(2I). Central differences
+    // are exact for it (linear ω at the half steps, midpoint rule for θ), and so must be a
+    // run split at instants off the step grid: the shortened step and the return to
+    // half-step speeds add no error. Without the return, the recorded end speed would be
+    // off by (T/I)·(Δt − r)/2 and the next run's angle by that times its duration.
+    let torque = 3.0;
+    let mut sim = spinning_with(0.0, Some(torque));
+    sim.state.pulley_omega[1] = -0.5 * torque / INERTIA * sim.model.dt;
+    let dt = sim.model.dt;
+    let alpha = torque / INERTIA;
+    let mut end = 0.0;
+    for duration in [700.25 * dt, 1300.5 * dt, 33.9 * dt] {
+        sim.run(duration, 50.0 * dt, Channels::default()).unwrap();
+        end += duration;
+        let speed = *sim.recording.pulley_speed.last().unwrap();
+        assert!(
+            (speed - alpha * end).abs() < 1e-9 * alpha * end,
+            "{speed} vs {}",
+            alpha * end
+        );
+    }
+    let angle = sim.state.pulley_angle[1];
+    let exact = 0.5 * alpha * end * end;
+    assert!((angle - exact).abs() < 1e-9 * exact, "{angle} vs {exact}");
 }
