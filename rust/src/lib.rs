@@ -4,8 +4,11 @@
 //!
 //! Data flows one way: a [`scene::Scene`] (plain data) is validated and compiled into a
 //! read-only [`model::Model`] holding only the stages the scene needs; a [`state::State`]
-//! holds everything that changes; a [`simulation::Simulation`] steps (model, state) with
-//! explicit central differences and records [`record::Recording`] buffers.
+//! holds everything that changes (generalized coordinates, velocities, memory); a
+//! [`simulation::Simulation`] advances (model, state) with the model's
+//! [`integrate::Integrator`], each force evaluation running the stage list of
+//! [`pipeline::evaluate`], and records [`record::Recording`] buffers. The layout and the
+//! recipes for a new stage, integrator or belt formulation are in `docs/architecture.md`.
 //!
 //! The first formulation is Hustrulid's (1993) node model: Kelvin-Voigt axial elements,
 //! rotational bending springs, nodal penalty contact with pulleys, centre-line contact with
@@ -34,7 +37,9 @@ pub mod suggest;
 #[cfg(feature = "python")]
 mod python;
 
+/// The node belt's kernels under their historical path (`beltrs::forces::axial`, ...).
 pub use belt::node as forces;
+/// Starting curves under their historical path.
 pub use drives::start_curve;
 pub use error::{BeltError, BeltResult};
 pub use integrate::relax::{Relaxation, StabiliseOptions, StabiliseReport};

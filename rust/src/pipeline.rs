@@ -33,6 +33,16 @@ pub struct Effects {
 }
 
 impl Effects {
+    /// A damping coefficient as these effects apply it: 0 when damping is off.
+    #[inline]
+    pub fn damped(self, coefficient: f64) -> f64 {
+        if self.damping {
+            coefficient
+        } else {
+            0.0
+        }
+    }
+
     /// Everything the model has.
     pub const ALL: Effects = Effects {
         friction: true,

@@ -6,7 +6,7 @@ use crate::pipeline::StageContext;
 /// Nodal penalty contact with pulleys (thesis eq. 4.70–4.75), searched in each pulley's
 /// window of nodes.
 pub fn pulley_contact(cx: &mut StageContext<'_>) {
-    let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
+    let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     for (j, p) in m.pulleys.iter().enumerate() {
         // Zero stiffness: the belt passes through this pulley (no contact).
         if p.contact_stiffness == 0.0 {
@@ -17,11 +17,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             center_velocity: s.pulley_center_velocity(m, j),
             radius: p.radius,
             stiffness: p.contact_stiffness * cx.contact_scale,
-            damping: if cx.effects.damping {
-                p.contact_damping
-            } else {
-                0.0
-            },
+            damping: effects.damped(p.contact_damping),
             margin: p.window_margin,
         };
         super::update_window(
@@ -44,17 +40,13 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
 /// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102), each idler tracking
 /// the element it touched last.
 pub fn idler_contact(cx: &mut StageContext<'_>) {
-    let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
+    let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     for (k, d) in m.idlers.iter().enumerate() {
         let body = IdlerBody {
             center: d.center,
             radius: d.radius,
             stiffness: d.contact_stiffness * cx.contact_scale,
-            damping: if cx.effects.damping {
-                d.contact_damping
-            } else {
-                0.0
-            },
+            damping: effects.damped(d.contact_damping),
         };
         sc.idler_contacts[k] = super::idler_contact(
             &mut s.idler_element[k],

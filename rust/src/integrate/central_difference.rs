@@ -161,8 +161,15 @@ impl Simulation {
             ),
         };
         let check = self.integrate_rigid(dt, dt);
+        self.finish_step(dt, nodes_finite, check)
+    }
+
+    /// Close a step of `drift` (s): advance time and step count, and report the first
+    /// non-finite quantity unless the nodes were finite and `check` (and the drives'
+    /// work) is.
+    fn finish_step(&mut self, drift: f64, nodes_finite: bool, check: f64) -> BeltResult<()> {
         let s = &mut self.state;
-        s.time += dt;
+        s.time += drift;
         s.step += 1;
         if !(nodes_finite && (check + s.drive_work).is_finite()) {
             return Err(self.locate_non_finite());
@@ -359,13 +366,7 @@ impl Simulation {
             finite &= x.x.is_finite() && x.y.is_finite();
         }
         let check = self.integrate_rigid(kick, drift);
-        let s = &mut self.state;
-        s.time += drift;
-        s.step += 1;
-        if !(finite && (check + s.drive_work).is_finite()) {
-            return Err(self.locate_non_finite());
-        }
-        Ok(())
+        self.finish_step(drift, finite, check)
     }
 
     /// After a shortened step of `drift` (s) the velocities are v(t − drift/2); bring them

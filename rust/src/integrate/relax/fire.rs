@@ -27,17 +27,10 @@ impl Simulation {
         let mut resets = 0;
         let mut residual = f64::INFINITY;
         for k in 0..options.max_steps {
-            self.relax_evaluate(effects, step);
-            if k.is_multiple_of(32) {
-                residual = self.residual();
-                if residual < options.tolerance {
-                    return Ok(StabiliseReport {
-                        steps: k,
-                        residual,
-                        converged: true,
-                        resets,
-                    });
-                }
+            if let Some(done) =
+                self.relax_evaluate(effects, step, k, options, &mut residual, resets)
+            {
+                return Ok(done);
             }
             // FIRE mixing on every degree of freedom.
             let (power, vnorm2, fnorm2) = self.fire_norms();

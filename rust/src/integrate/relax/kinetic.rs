@@ -16,17 +16,10 @@ impl Simulation {
         let mut resets = 0;
         let mut residual = f64::INFINITY;
         for k in 0..options.max_steps {
-            self.relax_evaluate(effects, step);
-            if k.is_multiple_of(32) {
-                residual = self.residual();
-                if residual < options.tolerance {
-                    return Ok(StabiliseReport {
-                        steps: k,
-                        residual,
-                        converged: true,
-                        resets,
-                    });
-                }
+            if let Some(done) =
+                self.relax_evaluate(effects, step, k, options, &mut residual, resets)
+            {
+                return Ok(done);
             }
             // Thesis §6.2 zeroes every velocity at a peak of the total kinetic energy. With
             // stiff contact the total is dominated by fast contact modes and the global

@@ -212,9 +212,28 @@ impl Simulation {
         result
     }
 
-    /// Evaluate the forces for a relaxation step.
-    fn relax_evaluate(&mut self, effects: Effects, step: RelaxStep) {
+    /// Evaluate the forces of relaxation step `k` and, every 32 steps, the residual (kept
+    /// in `residual`): the converged report once it is below the tolerance.
+    fn relax_evaluate(
+        &mut self,
+        effects: Effects,
+        step: RelaxStep,
+        k: u64,
+        options: &StabiliseOptions,
+        residual: &mut f64,
+        resets: u64,
+    ) -> Option<StabiliseReport> {
         self.evaluate_scaled(effects, step.dt, step.contact_scale, false);
+        if !k.is_multiple_of(32) {
+            return None;
+        }
+        *residual = self.residual();
+        (*residual < options.tolerance).then_some(StabiliseReport {
+            steps: k,
+            residual: *residual,
+            converged: true,
+            resets,
+        })
     }
 
     /// Largest out-of-balance force on a node or takeup relative to the largest tension.
