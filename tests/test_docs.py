@@ -88,3 +88,21 @@ def test_site_builds_strict(tmp_path):
     )
     assert out.returncode == 0, f"mkdocs build --strict failed:\n{out.stdout}\n{out.stderr}"
     assert (tmp_path / "site" / "reference" / "api" / "index.html").is_file()
+
+
+def test_runtime_page_names_the_checkpoint_format_version():
+    """docs/runtime.md describes the checkpoint format the engine writes."""
+    found = [m for f in sorted((ROOT / "rust" / "src").rglob("*.rs"))
+             for m in re.findall(r"pub const FORMAT_VERSION: u32 = (\d+);", f.read_text(encoding="utf-8"))]
+    assert len(found) == 1, found
+    page = (DOCS / "runtime.md").read_text(encoding="utf-8")
+    assert f"**Format (version {found[0]}" in page
+    assert f"format version, u32 = {found[0]}" in page
+
+
+def test_docs_cite_only_files_in_the_repository():
+    """The docs carry the facts they rely on: no pointers to the project's shared folder or seed papers."""
+    for page in DOCS.rglob("*.md"):
+        text = page.read_text(encoding="utf-8")
+        for outside in ("shared/seeds", "../shared", "seeds/", "seed 00"):
+            assert outside not in text, f"{page.relative_to(ROOT)} cites {outside!r}, which is not in the repository"
