@@ -106,3 +106,31 @@ def test_docs_cite_only_files_in_the_repository():
         text = page.read_text(encoding="utf-8")
         for outside in ("shared/seeds", "../shared", "seeds/", "seed 00"):
             assert outside not in text, f"{page.relative_to(ROOT)} cites {outside!r}, which is not in the repository"
+
+
+def test_pages_added_elsewhere_reach_the_navigation(tmp_path):
+    """mkdocs_hooks.place_unlisted: a page missing from mkdocs.yml's nav is placed in its section."""
+    spec = importlib.util.spec_from_file_location("mkdocs_hooks", ROOT / "mkdocs_hooks.py")
+    hooks = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hooks)
+    for rel, text in {"index.md": "# Home\n", "cli.md": "# Command line\n", "tutorials/new.md": "# A new tutorial\n",
+                      "odd.md": "no heading\n", "tutorials/listed.md": "# Listed\n"}.items():
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(text, encoding="utf-8")
+    nav = [{"Home": "index.md"}, {"Tutorials": [{"Listed": "tutorials/listed.md"}]}, {"Reference": []}]
+    added = hooks.place_unlisted(nav, tmp_path)
+    assert sorted(added) == ["cli.md", "odd.md", "tutorials/new.md"]
+    assert nav == [
+        {"Home": "index.md"},
+        {"Tutorials": [{"Listed": "tutorials/listed.md"}, {"A new tutorial": "tutorials/new.md"}]},
+        {"Reference": [{"Command line": "cli.md"}]},
+        {"More": [{"Odd": "odd.md"}]},
+    ]
+
+
+def test_install_pages_name_the_declared_rust_version():
+    """README and getting started state the Rust version that Cargo.toml declares."""
+    version = re.search(r'^rust-version = "([^"]+)"', (ROOT / "Cargo.toml").read_text(encoding="utf-8"), re.M)[1]
+    for page in (ROOT / "README.md", DOCS / "getting-started.md"):
+        text = page.read_text(encoding="utf-8")
+        assert "`rust-version`" in text and f"({version})" in text, f"{page.name} does not name rust-version {version}"
