@@ -37,7 +37,7 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
+from .scene import Belt, Drive, Friction, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .statics import check
 
 __all__ = [
@@ -435,7 +435,7 @@ class Conveyor:
         before the head)."""
         self.validate()
         prof = self.carry_profile
-        ml, mg = self.material_mass, self.belt_mass
+        ml = self.material_mass
         t_up = self.takeup_tension() if takeup_tension is None else takeup_tension
         v = self.speed
         cuts = sorted({0.0, prof.length, float(self.loading),
@@ -695,7 +695,8 @@ def _guides(prof: Profile, r: float) -> tuple[list[Pulley], list[Pulley]]:
             phi = piece.length / radius
             n = max(1, math.ceil(phi / math.sqrt(8 * GUIDE_GAP / radius)))
             centre = prof.point(s)[0] + np.array([-piece.direction[1], piece.direction[0]]) / piece.curvature
-            for strand, rad, out in (("carry", radius, carry), ("return", radius + (2 * r if concave else -2 * r), back)):
+            offset = 2 * r if concave else -2 * r  # the return strand, a drum diameter below
+            for strand, rad, out in (("carry", radius, carry), ("return", radius + offset, back)):
                 # vertex angles, measured from the first tangent point's radius
                 start = prof.point(s)[0] - centre
                 start = start / np.linalg.norm(start)

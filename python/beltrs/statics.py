@@ -336,8 +336,7 @@ class CEMA:
                              "or give A_i in N")
         else:
             check("CEMA.idler_resistance", self.idler_resistance, unit="N per idler set")
-        c1 = check("CEMA.c1", self.c1, positive=True, high=1.0, unit="dimensionless")
-        del c1
+        check("CEMA.c1", self.c1, positive=True, high=1.0, unit="dimensionless")
         if self.ky is not None:
             check("CEMA.ky", self.ky, unit="dimensionless")
         check("CEMA.ky_return", self.ky_return, unit="dimensionless")
@@ -567,7 +566,8 @@ def tensions(loop: Sequence[Union[Section, Point]], belt_mass: float, method: Op
                      "needs a drive: give one point drive = 1 (or shares adding up to 1)")
     shares = sum(items[i].drive for i in drives)
     if abs(shares - 1.0) > 1e-9:
-        raise _error("loop drive shares", [items[i].drive for i in drives], f"must add up to 1 (they add up to {shares:.6g})")
+        raise _error("loop drive shares", [items[i].drive for i in drives],
+                     f"must add up to 1 (they add up to {shares:.6g})")
     if not any(isinstance(it, Section) for it in items):
         raise _error("loop", loop, "needs at least one section")
 
