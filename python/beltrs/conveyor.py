@@ -584,10 +584,13 @@ class Conveyor:
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le))
         longest = max((self._curve(d).end for d in self.drives), default=0.0)
+        # A loaded incline has no equilibrium on frictionless drums (the belt would run back):
+        # relax with friction, the held drive drum gripping the belt (stabilise(friction=True)).
+        inclined = any(abs(float(a[1]) - float(b[1])) > 0 for a, b in zip(pts[:-1], pts[1:]))
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
                      recording=Recording(duration=longest + 5.0 if duration is None else duration, interval=0.05,
-                                         channels=("tension", "node_position")))
+                                         channels=("tension", "node_position"), stabilise_friction=inclined))
 
     def _curve(self, d: DriveSpec) -> StartCurve:
         curve = d.start_curve or StartCurve(shape="harrison", speed=self.speed, ramp=10.0)
@@ -700,9 +703,10 @@ def _guides(prof: Profile, r: float) -> tuple[list[Pulley], list[Pulley]]:
                 # vertex angles, measured from the first tangent point's radius
                 start = prof.point(s)[0] - centre
                 start = start / np.linalg.norm(start)
-                if concave:  # inscribed: vertices on the arc, its interior division points
-                    verts = [(j * phi / n, rad) for j in range(1, n)]
-                else:  # circumscribed: n tangent segments, n + 1 vertices... the interior n
+                if concave:  # inscribed: vertices on the arc, both tangent points included
+                    verts = [(j * phi / n, rad) for j in range(0, n + 1)]
+                else:  # circumscribed: n sides tangent to the arc; the first and last continue
+                    # the straights, so only the n corners between them are guides
                     verts = [((j + 0.5) * phi / n, rad / math.cos(phi / (2 * n))) for j in range(n)]
                 sign = 1.0 if piece.curvature > 0 else -1.0
                 for ang, dist in verts:
