@@ -216,3 +216,29 @@ def test_steady_running_agrees_with_din_22101():
     assert t2 == pytest.approx(d2, rel=0.03)
     drum = -data["pulley_speed"][:, sim.scene.pulley_index("head")] * r
     np.testing.assert_allclose(drum[t > RAMP + 0.5], 2.0, rtol=1e-9)  # within its torque limit
+
+
+def test_startup_study_quick():
+    """examples/startup_study.py --quick: 16 starts of a 40 m builder-made conveyor (about
+    10 s of CPU). The physics it must show: a three-times-longer ramp lowers every curve's
+    smooth peak above the steady T1 (rigid body: by 3x; the belt's ringing on top, hence
+    0.7); the linear curve's drive acceleration is v/T; a start stretches the belt, so the
+    takeup moves out (positive travel along its pull)."""
+    import io
+    import runpy
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "examples" / "startup_study.py"
+    mod = runpy.run_path(str(script))
+    out = io.StringIO()
+    rows = mod["study"](mod["QUICK"], out=out)
+    assert len(rows) == 16 and out.getvalue().count("\n| ") == 17  # header + 16 rows
+    by = {(w["shape"], w["ramp"], w["prestart"]): w for w in rows}
+    for shape in mod["SHAPES"]:
+        for pre in (0.0, 0.3):
+            slow, fast = by[(shape, 3.0, pre)], by[(shape, 1.0, pre)]
+            assert slow["peak2"] - slow["t1_din"] < 0.7 * (fast["peak2"] - fast["t1_din"])
+    v = mod["QUICK"]["speed"]
+    assert by[("linear", 1.0, 0.0)]["a_drive"] == pytest.approx(v / 1.0, rel=0.1)
+    assert by[("linear", 3.0, 0.0)]["a_drive"] == pytest.approx(v / 3.0, rel=0.1)
+    assert all(w["takeup"] > 0 and w["p_peak"] > 0 for w in rows)
