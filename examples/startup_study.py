@@ -8,6 +8,9 @@ belt tension, peak acceleration, takeup travel and drive power.
     python examples/startup_study.py --quick    # 40 m EP630/4 belt, ramps 1 s and 3 s, 0.3 s pre-start:
                                                 # the same study in seconds (a smoke test of the script)
 
+examples/startup_study.toml is the full-size conveyor's scene with the first curve
+(``--write-scene`` writes it; a test checks that it equals what this script builds).
+
 The conveyor is relaxed once to static equilibrium (drive held at rest), checkpointed, and
 each case starts from that checkpoint with its own start curve. Every case uses the same
 takeup tension and motor (sized by the builder for the most demanding curve), so that the
@@ -61,25 +64,32 @@ def curves(cfg: dict) -> list[beltrs.StartCurve]:
     return out
 
 
-def study(cfg: dict, out=sys.stdout) -> list[dict]:
-    cases = curves(cfg)
-    # Size takeup and motor once, for the curve with the largest acceleration.
-    steepest = max(cases, key=lambda c: float(np.max(c.acceleration_at(np.linspace(0, c.end, 2001)))))
+def design(cfg: dict) -> tuple[float, float, beltrs.statics.TensionProfile]:
+    """Takeup tension per strand (N) and motor power (W), sized by the builder for the
+    study's steepest curve, and the DIN 22101 tensions, shared by every case."""
+    steepest = max(curves(cfg), key=lambda c: float(np.max(c.acceleration_at(np.linspace(0, c.end, 2001)))))
     ref = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
                    speed=cfg["speed"], drives=[DriveSpec("head", start_curve=steepest)])
-    tension, power = ref.takeup_tension(), ref.motor_power("head")
-    din = ref.statics()
-    fixed = dict(takeup=TakeupSpec("tail", tension=tension))
+    return ref.takeup_tension(), ref.motor_power("head"), ref.statics()
+
+
+def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float) -> beltrs.Scene:
+    """The study's conveyor started along ``curve`` (examples/startup_study.toml is the
+    full-size one with the first curve)."""
+    c = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
+                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power)],
+                 takeup=TakeupSpec("tail", tension=tension))
+    return c.scene()
+
+
+def study(cfg: dict, out=sys.stdout) -> list[dict]:
+    cases = curves(cfg)
+    tension, power, din = design(cfg)
     print(f"# Start-up study: {cfg['length']:g} m, {cfg['belt']}, {cfg['capacity']:g} t/h at {cfg['speed']:g} m/s; "
           f"takeup {tension / 1e3:g} kN per strand, motor {power / 1e3:g} kW; DIN 22101 T1 = "
           f"{din.drive('head').tight / 1e3:.1f} kN, T2 = {din.drive('head').slack / 1e3:.1f} kN\n", file=out)
 
-    def build(curve: beltrs.StartCurve) -> beltrs.Scene:
-        c = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
-                     speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power)], **fixed)
-        return c.scene()
-
-    scene = build(cases[0])
+    scene = build(cfg, cases[0], tension, power)
     sim = beltrs.Simulation(scene)
     t0 = time.perf_counter()
     sim.stabilise(tolerance=1e-5, friction=scene.recording.stabilise_friction, max_steps=2_000_000)
@@ -93,7 +103,7 @@ def study(cfg: dict, out=sys.stdout) -> list[dict]:
         sim.save_checkpoint(ck)
         for curve in cases:
             s = beltrs.Simulation.load_checkpoint(ck)
-            drive = build(curve).pulleys[head].drive
+            drive = build(cfg, curve, tension, power).pulleys[head].drive
             s.set_drive("head", replace(drive, start_curve=replace(drive.start_curve, start=s.time)))
             t0 = time.perf_counter()
             res = s.run(curve.end + cfg["settle"], record_interval=cfg["interval"], tension=True,
@@ -127,7 +137,12 @@ def study(cfg: dict, out=sys.stdout) -> list[dict]:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="a 40 m conveyor with short ramps (seconds)")
+    parser.add_argument("--write-scene", metavar="PATH", help="write the full study's first scene to PATH and stop")
     args = parser.parse_args(argv)
+    if args.write_scene:
+        tension, power, _ = design(FULL)
+        build(FULL, curves(FULL)[0], tension, power).save(args.write_scene)
+        return 0
     study(QUICK if args.quick else FULL)
     return 0
 

@@ -242,3 +242,15 @@ def test_startup_study_quick():
     assert by[("linear", 1.0, 0.0)]["a_drive"] == pytest.approx(v / 1.0, rel=0.1)
     assert by[("linear", 3.0, 0.0)]["a_drive"] == pytest.approx(v / 3.0, rel=0.1)
     assert all(w["takeup"] > 0 and w["p_peak"] > 0 for w in rows)
+
+
+def test_startup_study_scene_file_is_what_the_script_builds():
+    import runpy
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    mod = runpy.run_path(str(examples / "startup_study.py"))
+    full = mod["FULL"]
+    tension, power, _ = mod["design"](full)
+    built = mod["build"](full, mod["curves"](full)[0], tension, power)
+    assert beltrs.load_scene(examples / "startup_study.toml") == built
