@@ -3,6 +3,7 @@
 mod common;
 
 mod bearing_drag;
+mod belt_drive_defaults;
 mod case_h_statics;
 mod checkpoint;
 mod friction_contact;

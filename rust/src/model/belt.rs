@@ -20,7 +20,7 @@ pub(super) struct NodeBelt {
 }
 
 /// Discretise the scene's belt on `path`: the belt may be stretched or compressed onto
-/// it by at most 5 %, and no element may be longer than the smallest pulley radius.
+/// it by at most `belt.max_placement_strain`, and no element may be longer than the smallest pulley radius.
 pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
     let belt = &scene.belt;
     let belt_length = belt.length.unwrap_or(path.length);
@@ -31,28 +31,28 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         .fold(f64::INFINITY, f64::min);
     // Strain needed to stretch the belt onto the path.
     let strain = path.length / belt_length - 1.0;
-    const MAX_PLACEMENT_STRAIN: f64 = 0.05;
-    if strain > MAX_PLACEMENT_STRAIN {
+    let max_strain = belt.max_placement_strain;
+    if strain > max_strain {
         return Err(BeltError::invalid(
             "belt.length",
             belt_length,
             format!(
-                "the belt is too short for its path of {:.6} m: it would be stretched by {:.2} % (limit {} %)",
+                "the belt is too short for its path of {:.6} m: it would be stretched by {:.2} % (limit belt.max_placement_strain = {} %; raise it for a pre-strained belt)",
                 path.length,
                 100.0 * strain,
-                100.0 * MAX_PLACEMENT_STRAIN
+                100.0 * max_strain
             ),
         ));
     }
-    if strain < -MAX_PLACEMENT_STRAIN {
+    if strain < -max_strain {
         return Err(BeltError::invalid(
             "belt.length",
             belt_length,
             format!(
-                "the belt is too long for its path of {:.6} m: it would be compressed by {:.2} % (limit {} %)",
+                "the belt is too long for its path of {:.6} m: it would be compressed by {:.2} % (limit belt.max_placement_strain = {} %)",
                 path.length,
                 -100.0 * strain,
-                100.0 * MAX_PLACEMENT_STRAIN
+                100.0 * max_strain
             ),
         ));
     }

@@ -14,7 +14,7 @@ pub struct IdlerModel {
     pub inertia: f64,
     /// Contact stiffness, N/m.
     pub contact_stiffness: f64,
-    /// Contact damping, N·s/m.
+    /// Contact damping, N·s/m (the scene's absolute value, or 2ζ√(k·m) from its ratio).
     pub contact_damping: f64,
     /// Friction model.
     pub friction: FrictionModel,
@@ -24,8 +24,10 @@ pub struct IdlerModel {
     pub rotating_mass: f64,
 }
 
-/// Compile the scene's idlers.
-pub(super) fn compile(scene: &Scene) -> Vec<IdlerModel> {
+/// Compile the scene's idlers for elements of rest length `l0` (m) (a contact damping
+/// ratio is taken on the element mass).
+pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<IdlerModel> {
+    let element_mass = scene.belt.mass_per_length * l0;
     scene
         .idlers
         .iter()
@@ -34,7 +36,12 @@ pub(super) fn compile(scene: &Scene) -> Vec<IdlerModel> {
             radius: d.radius,
             inertia: d.inertia,
             contact_stiffness: d.contact_stiffness,
-            contact_damping: d.contact_damping,
+            contact_damping: crate::scene::contact_damping(
+                d.contact_damping,
+                d.contact_damping_ratio,
+                d.contact_stiffness,
+                element_mass,
+            ),
             friction: d.friction,
             resistance: d.resistance,
             rotating_mass: d.rotating_mass,

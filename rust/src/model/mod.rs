@@ -116,7 +116,7 @@ impl Model {
         let path = path::compile(scene)?;
         let belt = belt::compile(scene, &path)?;
         let pulleys = pulleys::compile(scene, belt.element_length);
-        let idlers = idlers::compile(scene);
+        let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
         // and the uniform-mass fast path).
         let mut loads = crate::loads::compile(&scene.loads, &path, belt.element_length)?;

@@ -34,7 +34,7 @@ pub struct PulleyModel {
     pub bearing_damping: f64,
     /// Contact stiffness, N/m.
     pub contact_stiffness: f64,
-    /// Contact damping, N·s/m.
+    /// Contact damping, N·s/m (the scene's absolute value, or 2ζ√(k·m) from its ratio).
     pub contact_damping: f64,
     /// Friction model.
     pub friction: FrictionModel,
@@ -74,6 +74,7 @@ impl PulleyModel {
 /// Compile the scene's pulleys for elements of rest length `l0` (m): the contact window
 /// reaches one element beyond the radius.
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
+    let element_mass = scene.belt.mass_per_length * l0;
     scene
         .pulleys
         .iter()
@@ -91,7 +92,12 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 inertia: p.polar_inertia() + drive_inertia,
                 bearing_damping: p.bearing_damping,
                 contact_stiffness: p.contact_stiffness,
-                contact_damping: p.contact_damping,
+                contact_damping: crate::scene::contact_damping(
+                    p.contact_damping,
+                    p.contact_damping_ratio,
+                    p.contact_stiffness,
+                    element_mass,
+                ),
                 friction: p.friction,
                 takeup: p.takeup.as_ref().map(|t| {
                     let dir = Vector2::new(t.direction[0], t.direction[1]);
