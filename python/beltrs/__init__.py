@@ -10,22 +10,34 @@ from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, 
 from ._beltrs import __version__
 from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
-from .result import Result
+from .diagnostics import (
+    AccuracyWarning,
+    BeltrsWarning,
+    DriveDirectionWarning,
+    IdlerContactWarning,
+    NotRelaxedWarning,
+)
+from .result import Result, load_result
 from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
 from .simulation import Simulation
 
 __all__ = [
+    "AccuracyWarning",
     "Belt",
     "BeltrsError",
+    "BeltrsWarning",
     "Brake",
     "CheckpointError",
     "DivergenceError",
+    "DriveDirectionWarning",
     "Drive",
     "Friction",
     "Idler",
+    "IdlerContactWarning",
     "Load",
     "Model",
+    "NotRelaxedWarning",
     "Pulley",
     "Recording",
     "Result",
@@ -39,6 +51,7 @@ __all__ = [
     "__version__",
     "analysis",
     "analytic",
+    "load_result",
     "load_scene",
     "scenes",
     "study",
