@@ -3,7 +3,7 @@
 A :class:`Result` saves to NPZ (``Result.save("run.npz")``, readable with plain
 ``numpy.load`` and no pickle) or netCDF (``.nc``, through xarray), loads back with
 :func:`load_result` bit for bit, and gives labelled views: :meth:`Result.to_xarray` (named
-dimensions ``time``, ``element``, ``node``, ``pulley``, ``idler``, ``axis``, ``energy``,
+dimensions ``time``, ``element``, ``node``, ``pulley``, ``idler``, ``axis``, ``energy_term``,
 units as attributes) and :meth:`Result.to_pandas` (the per-pulley time series). xarray and
 pandas are optional; without them those two methods raise :class:`beltrs.BeltrsError`
 saying what to install. File format: ``docs/results.md``.
@@ -68,7 +68,7 @@ DIMS: dict[str, tuple[str, ...]] = {
     "slipping_nodes": ("time", "pulley"),
     "idler_force": ("time", "idler"),
     "idler_speed": ("time", "idler"),
-    "energy": ("time", "energy"),
+    "energy": ("time", "energy_term"),
 }
 
 _DESCRIPTION: dict[str, str] = {
@@ -89,7 +89,7 @@ _DESCRIPTION: dict[str, str] = {
     "slipping_nodes": "belt nodes slipping on the pulley",
     "idler_force": "idler normal force",
     "idler_speed": "idler angular speed",
-    "energy": "energies (columns: coordinate 'energy')",
+    "energy": "energies (terms: coordinate energy_term)",
     "drive_power": "drive power = drive_torque * pulley_speed",
 }
 
@@ -305,7 +305,7 @@ class Result:
 
         Dimensions: ``time`` (s, the coordinate), ``element`` (element e joins node e to
         e + 1), ``node``, ``pulley`` (coordinate: pulley names), ``idler``, ``axis``
-        (``"x"``, ``"y"``), ``energy`` (coordinate: energy column names). Every variable has
+        (``"x"``, ``"y"``), ``energy_term`` (coordinate: energy column names). Every variable has
         ``units`` and ``long_name`` attributes; ``drive_power`` (W) is added. Dataset
         attributes: ``dt``, ``wall_time``, ``interrupted`` (0/1), ``record_every``,
         ``stages``, ``beltrs_format`` and :attr:`metadata` (lists and bools stored so that
@@ -331,7 +331,7 @@ class Result:
             "time": ("time", self.time, {"units": "s", "long_name": "simulated time"}),
             "pulley": ("pulley", np.array(list(self.pulley_names), dtype=str)),
             "axis": ("axis", np.array(["x", "y"])),
-            "energy": ("energy", np.array(list(self.energy_columns), dtype=str)),
+            "energy_term": ("energy_term", np.array(list(self.energy_columns), dtype=str)),
         }
         meta_types = _metadata_types(self.metadata)
         attrs: dict[str, Any] = {
@@ -444,7 +444,7 @@ def _load_netcdf(path: Path) -> Result:
         raise _beltrs.BeltrsError(f"{path}: format {fmt!r}, this beltrs reads {FORMAT!r}")
     kw: dict[str, Any] = {name: (ds[name].values if name in ds.variables else None) for name in DIMS}
     kw["pulley_names"] = [str(s) for s in ds["pulley"].values]
-    kw["energy_columns"] = [str(s) for s in ds["energy"].values]
+    kw["energy_columns"] = [str(s) for s in ds["energy_term"].values]
     kw["stages"] = list(json.loads(ds.attrs["stages"]))
     for name, kind in _SCALARS.items():
         kw[name] = kind(ds.attrs[name])
@@ -472,12 +472,13 @@ def _netcdf_engine() -> str:
     import importlib.util
 
     _require("xarray", "netCDF files")
-    for module, engine in (("h5netcdf", "h5netcdf"), ("netCDF4", "netcdf4")):
-        if importlib.util.find_spec(module) is not None:
-            return engine
+    if importlib.util.find_spec("h5netcdf") is not None and importlib.util.find_spec("h5py") is not None:
+        return "h5netcdf"
+    if importlib.util.find_spec("netCDF4") is not None:
+        return "netcdf4"
     raise _beltrs.BeltrsError(
-        "netCDF files need the optional package 'h5netcdf' (or 'netCDF4'): pip install h5netcdf; "
-        "or save to .npz"
+        "netCDF files need the optional packages 'h5netcdf' and 'h5py' (or 'netCDF4'): "
+        "pip install h5netcdf h5py; or save to .npz"
     )
 
 

@@ -52,6 +52,7 @@ from .analysis import arrival_time, hustrulid_tangent_tensions, hustrulid_wave_s
 from .analytic import axial_wave_speed, two_pulley_takeup_statics
 from .scene import Drive, Friction, Scene
 from .simulation import Simulation
+from .sweep import set_field, summarise, sweep
 
 __all__ = [
     "Quantity",
@@ -64,7 +65,10 @@ __all__ = [
     "hustrulid_wave_speed_quantity",
     "pareto_front",
     "peak_tension",
+    "set_field",
     "slip",
+    "summarise",
+    "sweep",
     "takeup_displacement",
     "tension_difference",
     "wave_arrival_time",
