@@ -161,3 +161,29 @@ def test_run_ends_exactly_at_the_end_time(case_h):
     t0 = case_h.time
     res = case_h.run(20.0, record_interval=0.02, tension=False, node_position=False, node_velocity=False)
     assert res.time[-1] == t0 + 20.0
+
+
+def test_npz_of_an_older_beltrs_run_still_loads(tmp_path, pulse_result):
+    """`beltrs run` NPZ files from before the result format: counts as floats, metadata as
+    plain keys, no descriptors."""
+    old = {k: v for k, v in pulse_result.arrays().items()}
+    old["contact_nodes"] = old["contact_nodes"].astype(float)
+    old["slipping_nodes"] = old["slipping_nodes"].astype(float)
+    old.update(energy_columns=np.array(pulse_result.energy_columns), pulley_names=np.array(["upper", "takeup"]),
+               stages=np.array(pulse_result.stages), dt=pulse_result.dt, wall_time=0.5, interrupted=False,
+               record_every=9, scene="gravity = 9.81", nodes=89)
+    np.savez(tmp_path / "old.npz", **old)
+    res = beltrs.load_result(tmp_path / "old.npz")
+    assert res.contact_nodes.dtype == np.int64
+    np.testing.assert_array_equal(res.contact_nodes, pulse_result.contact_nodes)
+    assert res.metadata == {"scene": "gravity = 9.81", "nodes": 89} and res.record_every == 9
+
+
+def test_relaxation_shows_progress_when_asked(capsys):
+    sim = beltrs.Simulation(beltrs.scenes.hustrulid_loop())
+    report = sim.stabilise(progress=True)
+    err = capsys.readouterr().err
+    assert f"beltrs: relaxing to static equilibrium: {report['steps']} steps, residual" in err
+    sim = beltrs.Simulation(beltrs.scenes.hustrulid_loop())
+    sim.stabilise(progress=False)
+    assert capsys.readouterr().err == ""

@@ -102,3 +102,9 @@ def test_sweep_on_a_dask_local_cluster():
             warnings.simplefilter("ignore")
             client.close()
             cluster.close()
+
+
+def test_progress_counts_cases(capsys):
+    study.sweep({"recording.duration": [0.05, 0.1]}, scene=base_scene(), max_workers=1, progress=True)
+    err = capsys.readouterr().err
+    assert "beltrs sweep: 1/2 cases, 0 failed" in err and "beltrs sweep: 2/2 cases, 0 failed" in err
