@@ -193,8 +193,23 @@ def check_idlers(sim: "Simulation") -> None:
         return
     centres = np.array([d.center for d in idlers], dtype=float)
     radii = np.array([d.radius for d in idlers], dtype=float)
-    path = np.asarray(sim.state()["node_position"])
-    gap = _distance_to_path(centres, path) - radii
+    state = sim.state()
+    path = np.asarray(state["node_position"])
+    # The distance to the element each idler tracks (and its neighbours) bounds the distance
+    # to the belt from above: only idlers beyond the limit by that measure need the exact
+    # distance to the whole polygon.
+    n = len(path)
+    tracked = np.asarray(state["idler_element"], dtype=np.int64) % n
+    a = np.concatenate([path[(tracked + d) % n] for d in (-1, 0, 1)])
+    b = np.concatenate([path[(tracked + d + 1) % n] for d in (-1, 0, 1)])
+    p = np.tile(centres, (3, 1))
+    ab = b - a
+    t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
+    near = np.hypot(*(p - (a + t[:, None] * ab)).T).reshape(3, -1).min(axis=0)
+    gap = near - radii
+    candidates = np.flatnonzero(gap > IDLER_GAP_LIMIT)
+    if candidates.size:
+        gap[candidates] = _distance_to_path(centres[candidates], path) - radii[candidates]
     far = np.flatnonzero(gap > IDLER_GAP_LIMIT)
     key = tuple(far.tolist())
     if key == getattr(sim, "_idlers_warned", None):
