@@ -1,5 +1,8 @@
-"""What accuracy costs in time: run a scene at a ladder of settings and tabulate the answer,
-its error, the observed order of convergence, the wall time and the node-steps.
+"""Studies. :func:`sweep` runs many independent cases (start-up studies: curves × loads ×
+takeups × stops) on local processes or a Dask cluster into one xarray Dataset
+(``beltrs.sweep``, docs/sweeps.md). The rest of this module is about what accuracy costs in
+time: run a scene at a ladder of settings and tabulate the answer, its error, the observed
+order of convergence, the wall time and the node-steps.
 
 >>> import beltrs
 >>> from beltrs import study
