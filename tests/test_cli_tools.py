@@ -120,3 +120,12 @@ def test_warnings_are_one_line_on_stderr(tmp_path, capsys):
     assert captured.out == ""
     assert captured.err.startswith("beltrs: warning (NotRelaxedWarning): run() starts from the initial placement")
     assert captured.err.count("\n") == 1
+
+
+def test_run_to_netcdf(tmp_path, capsys):
+    scene = beltrs.scenes.hustrulid_loop()
+    scene.recording = beltrs.Recording(duration=0.05)
+    scene.save(tmp_path / "s.toml")
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "s.nc"), "--quiet"]) == 0
+    res = beltrs.load_result(tmp_path / "s.nc")
+    assert res.metadata["nodes"] == 89 and res.contact_nodes.dtype == np.int64

@@ -182,6 +182,10 @@ def run_scene(
     out_path = Path(out) if out is not None else default_output(scene_path)
     if not out_path.parent.is_dir():
         raise beltrs.SceneError(f"--out {out_path}: the directory {out_path.parent} does not exist")
+    if out_path.suffix.lower() in (".nc", ".nc4", ".netcdf"):
+        from beltrs.result import _netcdf_engine
+
+        _netcdf_engine()  # refuse before running, not after, if netCDF cannot be written
 
     sim = beltrs.Simulation(scene)
     say(f"beltrs {beltrs.__version__}: {scene_path}: {sim.nodes} nodes, {len(scene.pulleys)} pulleys, "
