@@ -76,6 +76,10 @@ def test_a_starting_curve_against_the_path_direction_warns():
         match=r"pulleys\[1\]\.drive\.start_curve\.speed = 2\.0: runs the belt backwards.*give speed the sign -",
     ):
         beltrs.Simulation(wrong)
+    # The same through set_drive on a running simulation.
+    sim = beltrs.Simulation(scene)
+    with pytest.warns(beltrs.DriveDirectionWarning, match=r"pulleys\[1\]\.drive\.start_curve\.speed = 2\.0"):
+        sim.set_drive("head", wrong.pulleys[head].drive)
     # Without loads the scene has no path direction: either sign is quiet.
     wrong.loads = []
     beltrs.Simulation(wrong)

@@ -447,6 +447,7 @@ class Simulation:
         pulley centres and takeup lines must stay the same."""
         self._core.set_scene(scene.to_dict())
         self.scene = scene
+        diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         return self.scene.pulley_index(pulley) if isinstance(pulley, str) else int(pulley)
