@@ -70,9 +70,10 @@ def test_unstorable_metadata_and_foreign_files_are_clear_errors(tmp_path, pulse_
     with pytest.raises(beltrs.BeltrsError, match=r"metadata\['bad'\] = .*must be str, bool, int, float"):
         res.save(tmp_path / "s.npz")
     assert not (tmp_path / "s.npz").exists()
-    res.metadata = {"tension": "x"}
-    with pytest.raises(beltrs.BeltrsError, match=r"metadata\['tension'\]: the name of a Result field"):
-        res.save(tmp_path / "s.npz")
+    for key in ("tension", "units", "dt"):
+        res.metadata = {key: "x"}
+        with pytest.raises(beltrs.BeltrsError, match=rf"metadata\['{key}'\]: the name of a Result field"):
+            res.save(tmp_path / "s.npz")
     with pytest.raises(beltrs.BeltrsError, match="must be 'npz' or 'netcdf'"):
         pulse_result.save(tmp_path / "s.npz", format="hdf")
     with pytest.raises(beltrs.BeltrsError, match="does not exist"):

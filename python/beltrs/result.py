@@ -111,7 +111,7 @@ PULLEY_SERIES = (
 #: Scalar attributes of a Result and their types, saved beside the arrays.
 _SCALARS = {"dt": float, "wall_time": float, "interrupted": bool, "record_every": int}
 _LISTS = ("energy_columns", "stages", "pulley_names")
-_META_TYPES = (str, bool, int, float)
+_DESCRIPTORS = ("beltrs_format", "units", "dims", "metadata_types")
 
 
 def _require(module: str, what: str) -> Any:
@@ -290,7 +290,7 @@ class Result:
         for name, kind in _SCALARS.items():
             out[name] = np.array(kind(getattr(self, name)))
         for key, value in self.metadata.items():
-            if key in out:
+            if key in out or key in _DESCRIPTORS:
                 raise _beltrs.BeltrsError(f"metadata[{key!r}]: the name of a Result field; choose another key")
             out[key] = np.array(value if meta_types[key] != "list" else list(value), dtype=_npz_dtype(value))
         out["beltrs_format"] = np.array(FORMAT)
@@ -344,7 +344,7 @@ class Result:
             "metadata_types": json.dumps(meta_types),
         }
         for key, value in self.metadata.items():
-            if key in attrs or key in data_vars or key in coords:
+            if key in attrs or key in data_vars or key in coords or key in _DESCRIPTORS:
                 raise _beltrs.BeltrsError(f"metadata[{key!r}]: the name of a Result field; choose another key")
             kind = meta_types[key]
             attrs[key] = (
@@ -421,7 +421,7 @@ def _load_npz(path: Path) -> Result:
             if name in files:
                 kw[name] = kind(f[name].item())
         meta_types = json.loads(str(f["metadata_types"])) if "metadata_types" in files else {}
-        known = set(DIMS) | set(_LISTS) | set(_SCALARS) | {"beltrs_format", "units", "dims", "metadata_types"}
+        known = set(DIMS) | set(_LISTS) | set(_SCALARS) | set(_DESCRIPTORS)
         metadata: dict[str, Any] = {}
         for key in f.files:
             if key in known:
