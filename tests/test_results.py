@@ -100,6 +100,9 @@ def test_to_xarray_has_named_dimensions_and_units(pulse_result):
     end = ds.takeup_travel.sel(pulley="takeup", time=pulse_result.time[-1])
     assert float(end) == pulse_result.takeup_travel[-1, 1]
     assert ds.attrs["dt"] == pulse_result.dt and ds.contact_nodes.dtype == np.int64
+    # Tension against distance along the belt: element midpoints, unstretched metres.
+    rest = pulse_result.metadata["rest_length"]
+    assert ds.distance.dims == ("element",) and ds.distance.values[-1] == pytest.approx(rest.sum() - rest[-1] / 2)
 
 
 def test_to_pandas_per_pulley_series(pulse_result):

@@ -305,7 +305,9 @@ class Result:
 
         Dimensions: ``time`` (s, the coordinate), ``element`` (element e joins node e to
         e + 1), ``node``, ``pulley`` (coordinate: pulley names), ``idler``, ``axis``
-        (``"x"``, ``"y"``), ``energy_term`` (coordinate: energy column names). Every variable has
+        (``"x"``, ``"y"``), ``energy_term`` (coordinate: energy column names); ``element`` has
+        the coordinate ``distance`` (m along the unstretched belt from node 0, element
+        midpoints) when the Result carries ``metadata["rest_length"]``. Every variable has
         ``units`` and ``long_name`` attributes; ``drive_power`` (W) is added. Dataset
         attributes: ``dt``, ``wall_time``, ``interrupted`` (0/1), ``record_every``,
         ``stages``, ``beltrs_format`` and :attr:`metadata` (lists and bools stored so that
@@ -333,6 +335,12 @@ class Result:
             "axis": ("axis", np.array(["x", "y"])),
             "energy_term": ("energy_term", np.array(list(self.energy_columns), dtype=str)),
         }
+        rest = self.metadata.get("rest_length")
+        if self.tension is not None and isinstance(rest, np.ndarray) and rest.shape == self.tension.shape[1:]:
+            coords["distance"] = (
+                "element", np.cumsum(rest) - rest / 2,
+                {"units": "m", "long_name": "element midpoint: distance along the unstretched belt from node 0"},
+            )
         meta_types = _metadata_types(self.metadata)
         attrs: dict[str, Any] = {
             "beltrs_format": FORMAT,
