@@ -5,24 +5,20 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, scenes, study
+from . import analysis, analytic, conveyor, scenes, statics, study
+from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
-from ._beltrs import __version__
+from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
 from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
-from .diagnostics import (
-    AccuracyWarning,
-    BeltrsWarning,
-    DriveDirectionWarning,
-    IdlerContactWarning,
-    NotRelaxedWarning,
-)
+from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
 from .result import Result, load_result
 from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
 from .simulation import Simulation
 
 __all__ = [
+    "DEFAULT_CONTACT_DAMPING_RATIO",
     "AccuracyWarning",
     "Belt",
     "BeltrsError",
@@ -48,11 +44,14 @@ __all__ = [
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "UndampedContactWarning",
     "__version__",
     "analysis",
     "analytic",
+    "conveyor",
     "load_result",
     "load_scene",
     "scenes",
+    "statics",
     "study",
 ]

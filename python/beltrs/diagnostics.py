@@ -30,6 +30,8 @@ from typing import TYPE_CHECKING, Iterator
 
 import numpy as np
 
+from ._checks import BeltrsWarning
+
 if TYPE_CHECKING:  # pragma: no cover
     from .simulation import Simulation
 
@@ -42,10 +44,6 @@ __all__ = [
     "IDLER_GAP_LIMIT",
     "RELAXED_RESIDUAL_LIMIT",
 ]
-
-
-class BeltrsWarning(UserWarning):
-    """Base of every beltrs warning: filter or escalate them all with this category."""
 
 
 class NotRelaxedWarning(BeltrsWarning):

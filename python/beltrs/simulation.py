@@ -12,6 +12,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from . import _beltrs, diagnostics
+from ._checks import warn_scene
 from ._progress import make_bar, make_ticker
 from .model import Model
 from .result import Result
@@ -63,6 +64,7 @@ class Simulation:
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
         self._placed = True  # still at the initial placement: never relaxed nor run
+        warn_scene(scene)
         diagnostics.check_scene(self)
 
     # --- model facts -------------------------------------------------------------------
@@ -447,6 +449,7 @@ class Simulation:
         pulley centres and takeup lines must stay the same."""
         self._core.set_scene(scene.to_dict())
         self.scene = scene
+        warn_scene(scene)
         diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
