@@ -144,7 +144,7 @@ def test_default_interval_comes_from_the_strands_and_is_capped(case_h):
 
 
 def test_last_instant_is_the_end_of_the_run(case_h):
-    # 20 s at 1.108 ms: 18047 steps, not a multiple of the 18-step grid.
+    # 20 s is not a whole number of grid intervals (case H: 21893 steps of 0.91 ms, 22-step grid).
     t0 = case_h.time
     res = case_h.run(20.0, record_interval=0.02, tension=False, node_position=False, node_velocity=False)
     assert res.time[-1] == case_h.time  # the final state is recorded
