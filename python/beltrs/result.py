@@ -370,7 +370,7 @@ class Result:
         quantity to its unit.
 
         >>> df = res.to_pandas()
-        >>> df["drive_torque"]["head"].max()
+        >>> df[("drive_torque", "head")].max()
         >>> df.xs("takeup", axis=1, level="pulley")     # every series of one pulley
 
         Raises:
