@@ -254,3 +254,46 @@ def test_startup_study_scene_file_is_what_the_script_builds():
     tension, power, _ = mod["design"](full)
     built = mod["build"](full, mod["curves"](full)[0], tension, power)
     assert beltrs.load_scene(examples / "startup_study.toml") == built
+
+
+def test_liftoff_radii():
+    # Level 100 m, then a concave curve (R = 250 m) up to 10 m at 200 m; EP630/4 (14.72 kg/m,
+    # m'_G g = 144.40 N/m), no material, tail takeup 30 kN. The curve turns atan(0.1) =
+    # 0.09967 rad, from 100 - 250 tan(0.04983) = 87.52 m to 87.52 + 24.92 m; its middle lies
+    # 99.98 m along the carry strand, and its rise, 12.48 sin(0.09967) = 1.2418 m, is
+    # spread linearly over the arc by the static calculation (half of it by the middle).
+    # Carry: T = 30000 + 0.1962 (16.667 + 14.72) 99.98 + 144.40 * 0.6209
+    #          = 30000 + 615.7 + 89.7 = 30705.4 N  ->  R_min = 30705.4 / 144.40 = 212.64 m
+    # Return (15 kg / 3 m = 5 kg/m of rolls), walking from there down to the 30 kN tail:
+    #   T = 30000 - 0.1962 (5 + 14.72) 99.98 + 89.7 = 29702.8 N  ->  R_min = 205.70 m
+    # The given 250 m keeps the belt on its idlers.
+    c = Conveyor(profile=[(0, 0), (100, 0), (200, 10)], curve_radii=[250.0], belt="EP630/4",
+                 takeup=TakeupSpec("tail", tension=30e3))
+    (station, strand, radius, r_min), (_, strand2, radius2, r_min2) = c.liftoff_radii()
+    assert (station, strand, strand2) == (1, "carry", "return")
+    assert radius == 250.0 and radius2 == pytest.approx(250.0 + 2 * c.radius)
+    assert r_min == pytest.approx(212.64, rel=1e-4)
+    assert r_min2 == pytest.approx(205.70, rel=1e-4)
+    # A convex curve has no lift-off check.
+    assert Conveyor(profile=[(0, 0), (100, 10), (200, 10)], curve_radii=[250.0], belt="EP630/4").liftoff_radii() == []
+
+
+@pytest.mark.parametrize(
+    "kw,match",
+    [
+        (dict(carry="wide"), r"carry = 'wide': expected a beltrs\.conveyor\.IdlerSet"),
+        (dict(drives=["head"]), r"drives = \['head'\]: expected a list of beltrs\.conveyor\.DriveSpec"),
+        (dict(lagging=0.4), r"lagging = 0\.4: expected a list of numbers"),
+        (dict(profile=[(0, 0), (50, 0), (100, 5)], curve_radii=["big"]),
+         r"curve_radii\[0\] = 'big': expected a number"),
+    ],
+)
+def test_bad_types_are_scene_errors(kw, match):
+    base = dict(profile=[(0, 0), (L, 0)])
+    base.update(kw)
+    with pytest.raises(beltrs.SceneError, match=match):
+        Conveyor(**base).scene()
+    with pytest.raises(beltrs.SceneError, match=r"conveyor text = 5: expected the text"):
+        conveyor.loads(5)
+    with pytest.raises(beltrs.SceneError, match=r"conveyor file = None: expected a path"):
+        conveyor.load(None)
