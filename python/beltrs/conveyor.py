@@ -376,7 +376,7 @@ class Conveyor:
         if len(self.curve_radii) != max(0, len(pts) - 2):
             raise SceneError(f"curve_radii = {list(self.curve_radii)!r}: need one radius per interior station "
                              f"({len(pts) - 2})")
-        bc = self.belt_class
+        self.belt_class  # a known class, or a SceneError naming it
         check("width", self.width, positive=True, unit="m")
         for name in ("top_cover", "bottom_cover"):
             if getattr(self, name) is not None:
@@ -434,7 +434,6 @@ class Conveyor:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
                              "(a quarter or less is advised, docs/stability.md)")
-        del bc
 
     # --- the static calculation ---------------------------------------------------------
     def loop(self, takeup_tension: Optional[float] = None) -> list[Union[statics.Section, statics.Point]]:
