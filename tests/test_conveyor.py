@@ -297,3 +297,20 @@ def test_bad_types_are_scene_errors(kw, match):
         conveyor.loads(5)
     with pytest.raises(beltrs.SceneError, match=r"conveyor file = None: expected a path"):
         conveyor.load(None)
+
+
+def test_head_takeup_and_tail_drive():
+    # Takeup on the head drive drum (pull along the strands, beyond the head) and a second
+    # drive at the tail taking a third of F_U: the static calculation holds T1 + T2 = 2 T at
+    # the head, and the scene compiles with the pull in line with the last straight.
+    c = short(drives=[DriveSpec("head", share=2 / 3), DriveSpec("tail", share=1 / 3)],
+              takeup=TakeupSpec("head", tension=20e3))
+    p = c.statics()
+    head, tail = p.drive("head"), p.drive("tail")
+    assert head.tight + head.slack == pytest.approx(40e3, rel=1e-12)
+    assert head.force == pytest.approx(2 / 3 * p.effective, rel=1e-12)
+    assert tail.force == pytest.approx(1 / 3 * p.effective, rel=1e-12)
+    s = c.scene()
+    assert s.pulleys[1].takeup.direction == (1.0, 0.0) and s.pulleys[0].takeup is None
+    assert s.pulleys[0].drive is not None and s.pulleys[1].drive is not None
+    beltrs.compile(s)
