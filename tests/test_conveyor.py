@@ -314,3 +314,21 @@ def test_head_takeup_and_tail_drive():
     assert s.pulleys[1].takeup.direction == (1.0, 0.0) and s.pulleys[0].takeup is None
     assert s.pulleys[0].drive is not None and s.pulleys[1].drive is not None
     beltrs.compile(s)
+
+
+def test_cema_on_a_builder_conveyor():
+    # CEMA from the same description: Table 2.1's range needs the carry pitch within
+    # 0.914-1.524 m (1.2 m here); the loop closes on the takeup and F_U lies within 15 % of
+    # DIN 22101's with f = 0.02 (independent calibrations; 60.6 against 65.7 kN for the
+    # 1 km tutorial conveyor).
+    c = Conveyor(profile=[(0, 0), (400, 0), (1000, 30)], curve_radii=[1500], belt="ST1250", capacity=1500,
+                 speed=4.0, takeup=TakeupSpec("tail", tension=50e3))
+    din = c.statics()
+    cema = c.statics(beltrs.statics.CEMA(idler_resistance="C6"))
+    assert cema.tension[-1] == pytest.approx(50e3, rel=1e-12)
+    assert cema.effective == pytest.approx(din.effective, rel=0.15)
+    strands = [it.strand for it in c.loop() if isinstance(it, beltrs.statics.Section)]
+    carry = np.array([st == "carry" for st in strands])
+    assert np.all((cema.ky[carry] > 0.005) & (cema.ky[carry] < 0.05)) and np.all(np.isnan(cema.ky[~carry]))
+    with pytest.raises(beltrs.SceneError, match=r"idler_spacing = 3\.0: CEMA's K_y table covers"):
+        Conveyor(carry=IdlerSet(pitch=3.0)).statics(beltrs.statics.CEMA())
