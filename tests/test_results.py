@@ -156,11 +156,6 @@ def test_last_instant_is_the_end_of_the_run(case_h):
     assert len(res) == 4 and res.time[-1] == case_h.time
 
 
-@pytest.mark.xfail(
-    reason="the run contract is in whole steps here; the exact end time comes with run(duration) in Rust "
-    "(core-seams issue), which takes a last partial step",
-    strict=True,
-)
 def test_run_ends_exactly_at_the_end_time(case_h):
     t0 = case_h.time
     res = case_h.run(20.0, record_interval=0.02, tension=False, node_position=False, node_velocity=False)

@@ -219,7 +219,8 @@ def run_scene(
     step0 = int(sim.state()["step"])
     code, error = EXIT_OK, ""
     try:
-        res = sim.run(rec.duration, progress=progress, **rec.run_kwargs())
+        # A run file keeps every array, the energies included (opt-in in the API).
+        res = sim.run(rec.duration, progress=progress, energy=True, **rec.run_kwargs())
     except beltrs.DivergenceError as err:
         res, code, error = err.result, EXIT_RUN_FAILED, str(err)  # type: ignore[attr-defined]
     meta["steps"] = int(sim.state()["step"]) - step0
@@ -325,10 +326,11 @@ def export_command(result_path: str, out_dir: Optional[str] = None) -> int:
     path = directory / f"{stem}_pulleys.csv"
     _write_csv(path, header, cols)
     written.append(path)
-    path = directory / f"{stem}_energy.csv"
-    _write_csv(path, ["time (s)"] + [f"{c} (J)" for c in res.energy_columns],
-               [res.time] + [res.energy[:, k] for k in range(res.energy.shape[1])])
-    written.append(path)
+    if res.energy is not None:  # energies are recorded only on request (energy=True)
+        path = directory / f"{stem}_energy.csv"
+        _write_csv(path, ["time (s)"] + [f"{c} (J)" for c in res.energy_columns],
+                   [res.time] + [res.energy[:, k] for k in range(res.energy.shape[1])])
+        written.append(path)
     if res.tension is not None:
         rest = res.metadata.get("rest_length")
         first = None if res.node_position is None else res.node_position[0]

@@ -431,7 +431,7 @@ def _load_npz(path: Path) -> Result:
         fmt = str(f["beltrs_format"]) if "beltrs_format" in files else None
         if fmt is not None and fmt != FORMAT:
             raise _beltrs.BeltrsError(f"{path}: format {fmt!r}, this beltrs reads {FORMAT!r}")
-        missing = [k for k in ("time", "takeup_travel", "energy", "energy_columns") if k not in files]
+        missing = [k for k in ("time", "takeup_travel", "energy_columns") if k not in files]
         if missing:
             raise _beltrs.BeltrsError(f"{path}: not a beltrs result (missing {', '.join(missing)})")
         kw: dict[str, Any] = {name: (f[name] if name in files else None) for name in DIMS}
