@@ -279,16 +279,21 @@ fn release_slipping(
     // on that side, and stays ahead of every node of the other side while it is released
     // (its excess grows as α moves away, the other side's shrink). So releasing that whole
     // prefix in one O(n_c) pass gives exactly the states of the one-at-a-time rule. A slip
-    // arc, a sliding capstan or a brake is one or two waves; slip on both sides (a loop
-    // settling on its pulleys stretches away from them both ways) goes to the sorted lists.
-    const WAVES: usize = 2;
-    for _ in 0..WAVES {
+    // arc, a sliding capstan or a brake is one or two waves (more when releases cascade);
+    // slip on both sides (a loop settling on its pulleys stretches away from them both
+    // ways) releases few per wave, and once a wave takes less than half of the violators
+    // the rest goes to the sorted lists.
+    const MAX_WAVES: usize = 8;
+    for _ in 0..MAX_WAVES {
         let ra = r * alpha(torque, a_sum, m_sum);
         let (mut ep, mut en) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut violators = 0usize;
         for k in 0..nc {
             if scratch.sticking[k] {
-                ep = ep.max(scratch.key_pos[k] - ra);
-                en = en.max(scratch.key_neg[k] + ra);
+                let (p, q) = (scratch.key_pos[k] - ra, scratch.key_neg[k] + ra);
+                ep = ep.max(p);
+                en = en.max(q);
+                violators += usize::from(p > 0.0 || q > 0.0);
             }
         }
         if !(ep > 0.0 || en > 0.0) {
@@ -302,6 +307,7 @@ fn release_slipping(
             (&scratch.key_neg, ra, en, ep, -1.0)
         };
         let threshold = other.max(0.0);
+        let mut released = 0usize;
         for k in 0..nc {
             if !scratch.sticking[k] {
                 continue;
@@ -315,8 +321,12 @@ fn release_slipping(
                 torque += r * fk;
                 a_sum -= scratch.free[k];
                 m_sum -= mass[contacts.node[k]];
-                slipping += 1;
+                released += 1;
             }
+        }
+        slipping += released;
+        if 2 * released < violators {
+            break;
         }
     }
     let mut pos = std::mem::take(&mut scratch.list_pos);
