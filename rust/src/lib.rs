@@ -20,6 +20,7 @@ pub mod drives;
 pub mod error;
 pub mod friction;
 pub mod geometry;
+pub mod integrate;
 pub mod loads;
 pub mod model;
 pub mod presets;
@@ -32,10 +33,10 @@ pub mod suggest;
 #[cfg(feature = "python")]
 mod python;
 
+pub use belt::node as forces;
+pub use drives::start_curve;
 pub use error::{BeltError, BeltResult};
 pub use model::{Model, Stage};
 pub use scene::Scene;
 pub use simulation::{Relaxation, Simulation, StabiliseOptions, StabiliseReport};
-pub use belt::node as forces;
-pub use drives::start_curve;
 pub use start_curve::{StartCurve, StartShape};
