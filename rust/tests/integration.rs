@@ -7,6 +7,7 @@ mod checkpoint;
 mod friction_contact;
 mod kernels;
 mod kubas_kernels;
+mod kubas_prototype;
 mod load_resistance;
 mod recorder;
 mod recording_params;

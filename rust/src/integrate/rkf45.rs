@@ -217,6 +217,7 @@ pub struct Rkf45 {
     /// Error norm of the last attempted step (≤ 1 when accepted).
     pub last_error_norm: f64,
     h: f64,
+    scales: Vec<f64>,
     k: [Vec<f64>; 6],
     stage: Vec<f64>,
     low: Vec<f64>,
@@ -236,6 +237,7 @@ impl Rkf45 {
             },
             last_error_norm: 0.0,
             h: params.initial_step,
+            scales: vec![1.0; len],
             k: [v(), v(), v(), v(), v(), v()],
             stage: v(),
             low: v(),
@@ -248,6 +250,32 @@ impl Rkf45 {
         self.h
     }
 
+    /// Per-component multipliers of the absolute tolerance (atolᵢ = atol·scaleᵢ), for states
+    /// that mix units (positions, angles, speeds); all 1 by default. Each must be finite and
+    /// > 0, one per component.
+    pub fn set_absolute_scales(&mut self, scales: &[f64]) -> BeltResult<()> {
+        if scales.len() != self.scales.len() {
+            return Err(BeltError::Usage(format!(
+                "RKF45 absolute-tolerance scales: {} given for a state of {} components",
+                scales.len(),
+                self.scales.len()
+            )));
+        }
+        if let Some((i, v)) = scales
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(v.is_finite() && **v > 0.0))
+        {
+            return Err(BeltError::invalid(
+                format!("rkf45.absolute_scales[{i}]"),
+                v,
+                "must be finite and > 0",
+            ));
+        }
+        self.scales.copy_from_slice(scales);
+        Ok(())
+    }
+
     /// Error norm of a difference `e` for states `y` and `y_new` (module docs).
     fn norm(&self, e: &[f64], y: &[f64], y_new: &[f64]) -> f64 {
         let (rt, at) = (
@@ -258,8 +286,9 @@ impl Rkf45 {
         let s: f64 = e
             .iter()
             .zip(y.iter().zip(y_new))
-            .map(|(e, (a, b))| {
-                let q = e / (at + rt * a.abs().max(b.abs()));
+            .zip(&self.scales)
+            .map(|((e, (a, b)), sc)| {
+                let q = e / (at * sc + rt * a.abs().max(b.abs()));
                 q * q
             })
             .sum();
