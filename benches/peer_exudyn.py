@@ -109,8 +109,10 @@ def run_beltrs(duration: float) -> dict:
 
 # --- beltrs, rigid-body prototype ------------------------------------------------------------
 def run_prototype(duration: float) -> None:
-    print("-- beltrs rigid-body prototype (cargo run --release --example kubas_case_k)")
-    env = dict(os.environ, KUBAS_READING="strain")
+    print("-- beltrs rigid-body prototype (cargo run --release --example kubas_case_k, dv = 0.05 m/s)")
+    # The paper's creep range (dv = 1e-5 m/s) needs ~1e-10 s steps (docs/kubas.md): run at
+    # dv = 0.05 m/s, where T1 - T2 and the slip no longer move with dv.
+    env = dict(os.environ, KUBAS_READING="strain", KUBAS_DV="0.05")
     out = subprocess.run(
         ["cargo", "run", "--release", "-q", "--example", "kubas_case_k", "--", str(duration)],
         cwd=ROOT,
