@@ -3,5 +3,7 @@
 //!
 //! - [`node`]: Hustrulid's (1993) discrete node model (Kelvin-Voigt axial elements,
 //!   rotational bending springs, node weights).
+//! - [`rigid`]: Kubas's (2014) chain of rigid bodies joined by Kelvin–Voigt spring-dampers.
 
 pub mod node;
+pub mod rigid;

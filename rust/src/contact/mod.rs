@@ -6,6 +6,7 @@
 //! thesis) acts on the normal approach speed and never pulls the belt onto the body.
 
 pub mod stage;
+pub mod nonlinear;
 
 use crate::state::ContactWindow;
 use nalgebra::Vector2;

@@ -10,6 +10,7 @@
 
 pub mod bearing;
 pub mod hold;
+pub mod resistance;
 pub mod start_curve;
 pub mod takeup;
 pub mod torque;

@@ -6,12 +6,16 @@
 //!   next step's axial pass.
 //! - [`relax`]: static relaxation (FIRE, kinetic-energy damping) with its own step,
 //!   fictitious masses and a continuation in contact stiffness.
+//! - [`rkf45`]: adaptive Runge–Kutta–Fehlberg 4(5) over a flat state vector and a
+//!   derivative callback (Kubas 2014's integrator; not yet an [`Integrator`] variant:
+//!   the case K prototype drives it outside `Simulation`).
 //!
 //! [`Integrator`] is the seam: [`crate::Simulation`] matches on the model's integrator to
 //! advance; a new one is a file here, a variant and an arm (docs/architecture.md).
 
 pub mod central_difference;
 pub mod relax;
+pub mod rkf45;
 
 use crate::model::Model;
 use crate::state::Rigid;
