@@ -13,6 +13,6 @@ mod kubas_prototype;
 mod load_resistance;
 mod recorder;
 mod recording_params;
-mod run_contract;
 mod rkf45;
+mod run_contract;
 mod speed_drive;
