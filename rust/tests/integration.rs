@@ -9,4 +9,5 @@ mod kernels;
 mod load_resistance;
 mod recorder;
 mod recording_params;
+mod scene_schema;
 mod speed_drive;

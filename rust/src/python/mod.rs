@@ -1,8 +1,7 @@
 //! Python bindings: the only module that knows PyO3. Thin wrappers that convert arguments,
 //! call the core, and convert results and errors back. No panic crosses into Python.
 
-mod scene_dict;
-mod scene_out;
+mod scene;
 
 use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
@@ -93,7 +92,7 @@ impl PySimulation {
     #[new]
     fn new(scene: &Bound<'_, PyAny>) -> PyResult<Self> {
         guarded(|| {
-            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            let scene = scene::scene_from_py(scene).map_err(to_py)?;
             let inner = Simulation::new(&scene).map_err(to_py)?;
             Ok(PySimulation {
                 inner,
@@ -105,7 +104,7 @@ impl PySimulation {
     /// Replace the scene parameters and keep the state.
     fn set_scene(&mut self, scene: &Bound<'_, PyAny>) -> PyResult<()> {
         guarded(|| {
-            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            let scene = scene::scene_from_py(scene).map_err(to_py)?;
             self.inner.set_scene(&scene).map_err(to_py)
         })
     }
@@ -386,7 +385,7 @@ impl PySimulation {
     ) -> PyResult<Self> {
         guarded(|| {
             let expected = match scene {
-                Some(d) => Some(scene_dict::scene_from_dict(d).map_err(to_py)?),
+                Some(d) => Some(scene::scene_from_py(d).map_err(to_py)?),
                 None => None,
             };
             let inner = py
@@ -403,8 +402,8 @@ impl PySimulation {
     }
 
     /// The scene of the compiled model, in dict form (the keys of `Scene.to_dict()`).
-    fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        scene_out::scene_to_dict(py, &self.inner.model.scene)
+    fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        scene::to_py(py, &self.inner.model.scene)
     }
 
     /// Advance `steps` steps without recording.
@@ -555,10 +554,26 @@ fn start_curve_eval<'py>(
     times: Vec<f64>,
 ) -> PyResult<(Array1<'py>, Array1<'py>)> {
     guarded(|| {
-        let curve = scene_dict::start_curve_from_dict(curve, "start_curve").map_err(to_py)?;
+        let curve = scene::start_curve_from_py(curve, "start_curve").map_err(to_py)?;
         let (speed, accel): (Vec<f64>, Vec<f64>) = times.iter().map(|&t| curve.evaluate(t)).unzip();
         Ok((PyArray1::from_vec(py, speed), PyArray1::from_vec(py, accel)))
     })
+}
+
+/// Check a scene in dict form against the scene schema (unknown keys, types), raising
+/// `SceneError` naming the full path, the value and the rule. Values are checked when the
+/// scene compiles.
+#[pyfunction]
+fn check_scene(scene: &Bound<'_, PyAny>) -> PyResult<()> {
+    guarded(|| scene::scene_from_py(scene).map(|_| ()).map_err(to_py))
+}
+
+/// The defaults of every table of the scene format (`"scene"`, `"belt"`, `"pulley"`,
+/// `"friction"`, `"takeup"`, `"drive"`, `"start_curve"`, `"brake"`, `"idler"`, `"load"`,
+/// `"solver"`, `"recording"`), each a dict of every key; required keys hold None.
+#[pyfunction]
+fn scene_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    guarded(|| scene::defaults(py))
 }
 
 /// The compiled extension module.
@@ -566,6 +581,8 @@ fn start_curve_eval<'py>(
 fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySimulation>()?;
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;
