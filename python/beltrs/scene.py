@@ -46,8 +46,10 @@ __all__ = [
     "Takeup",
 ]
 
+
 #: The engine's defaults of every table of the scene format (one dict per table).
 ENGINE_DEFAULTS: dict[str, dict[str, Any]] = scene_defaults()
+
 
 #: Deepest nesting :meth:`_Table.to_dict` follows (the format itself is 5 levels deep);
 #: anything deeper is handed to the engine as it is, which refuses it by name.
@@ -114,6 +116,7 @@ class Friction(_Table):
     def __post_init__(self) -> None:
         _normalise(self)
 
+
 @dataclass
 @_engine_table("takeup")
 class Takeup(_Table):
@@ -134,6 +137,7 @@ class Takeup(_Table):
 
     def __post_init__(self) -> None:
         _normalise(self)
+
 
 #: Shapes of a starting curve (:class:`StartCurve`).
 START_SHAPES = ("harrison", "nordell", "cubic", "linear")
@@ -274,6 +278,7 @@ class Drive(_Table):
             values = [torque, torque, 0.0]
         return cls(time=times, torque=values, **kw)
 
+
 @dataclass
 @_engine_table("brake")
 class Brake(_Table):
@@ -289,6 +294,7 @@ class Brake(_Table):
 
     def __post_init__(self) -> None:
         _normalise(self)
+
 
 @dataclass
 @_engine_table("pulley")
@@ -331,6 +337,7 @@ class Pulley(_Table):
     def __post_init__(self) -> None:
         _normalise(self)
 
+
 @dataclass
 @_engine_table("idler")
 class Idler(_Table):
@@ -365,6 +372,7 @@ class Idler(_Table):
     def __post_init__(self) -> None:
         _normalise(self)
 
+
 @dataclass
 @_engine_table("load")
 class Load(_Table):
@@ -393,6 +401,7 @@ class Load(_Table):
 
     def __post_init__(self) -> None:
         _normalise(self)
+
 
 @dataclass
 @_engine_table("belt")
@@ -439,6 +448,7 @@ class Belt(_Table):
             **kw,
         )
 
+
 @dataclass
 @_engine_table("solver")
 class Solver(_Table):
@@ -456,6 +466,7 @@ class Solver(_Table):
 
     def __post_init__(self) -> None:
         _normalise(self)
+
 
 #: Optional large arrays a run can record (``Recording.channels``); every other array of
 #: :class:`beltrs.Result` is always recorded.
