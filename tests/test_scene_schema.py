@@ -171,7 +171,10 @@ def test_a_checkpoint_of_an_older_format_is_refused_naming_its_version(tmp_path)
     path = tmp_path / "c.ck"
     sim.save_checkpoint(path)
     data = bytearray(path.read_bytes())
-    data[8:12] = (2).to_bytes(4, "little")
-    path.write_bytes(bytes(data))
-    with pytest.raises(beltrs.CheckpointError, match=r"format version 2; this build of beltrs reads versions 3 to 3"):
-        beltrs.Simulation.load_checkpoint(path)
+    for old in (1, 2, 3):  # hand-written scene encodings, before the scene's serde form
+        data[8:12] = old.to_bytes(4, "little")
+        path.write_bytes(bytes(data))
+        with pytest.raises(
+            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 4 \(.*older"
+        ):
+            beltrs.Simulation.load_checkpoint(path)

@@ -314,7 +314,14 @@ class Pulley(_Table):
             drive, brake and takeup then act on the pulley alone, and friction on it is
             refused, having no normal force to act with); with 0 on every pulley no
             ``pulley_contact`` stage is compiled.
-        contact_damping: normal contact damping, N*s/m. Default 0.
+        contact_damping: normal contact damping, N*s/m, >= 0, on the approach speed only.
+            Default None: from ``contact_damping_ratio``. Give one or the other, not both.
+        contact_damping_ratio: normal contact damping as a fraction zeta of critical,
+            dimensionless, >= 0: c = 2 zeta sqrt(k m), k the contact stiffness and m the
+            belt's node mass (mass_per_length * element length, without material). Default
+            None: 0.2 (``DEFAULT_CONTACT_DAMPING_RATIO``) unless ``contact_damping`` is
+            given. Undamped contact (0) with friction lets the belt bounce off the pulley
+            and gets a :class:`beltrs.UndampedContactWarning` (docs/belt-drives.md).
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
@@ -328,7 +335,8 @@ class Pulley(_Table):
     wrap: str
     friction: Optional[Friction]
     contact_stiffness: float
-    contact_damping: float
+    contact_damping: Optional[float]
+    contact_damping_ratio: Optional[float]
     takeup: Optional[Takeup]
     drive: Optional[Drive]
     brake: Optional[Brake]
@@ -348,7 +356,11 @@ class Idler(_Table):
         radius: radius, m. Default 0.0635.
         inertia: rotating inertia, kg*m^2. Default 0.01.
         contact_stiffness: N/m. Default 1e8.
-        contact_damping: N*s/m. Default 0.
+        contact_damping: normal contact damping, N*s/m, >= 0. Default None: from
+            ``contact_damping_ratio``. Give one or the other, not both.
+        contact_damping_ratio: normal contact damping as a fraction of critical,
+            c = 2 zeta sqrt(k m) with m the belt's node mass. Default None: 0.2 unless
+            ``contact_damping`` is given.
         friction: belt friction. Default None (the roll never turns).
         resistance: running resistance, DIN 22101's artificial friction coefficient f,
             dimensionless, >= 0. The belt meets a tangential force at the contact point
@@ -364,7 +376,8 @@ class Idler(_Table):
     radius: float
     inertia: float
     contact_stiffness: float
-    contact_damping: float
+    contact_damping: Optional[float]
+    contact_damping_ratio: Optional[float]
     friction: Optional[Friction]
     resistance: float
     rotating_mass: float
@@ -420,6 +433,11 @@ class Belt(_Table):
         max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
             only when ``elements`` is None.
         tension_only: if True a slack element carries no compression. Default False.
+        max_placement_strain: largest strain, dimensionless, > 0, at which the belt may be
+            placed on its initial path, |path length / length - 1|; a belt stretched (or
+            compressed) more is refused as too short (too long) for its path, usually a
+            unit slip. Raise it for a pre-strained elastic drive belt (the belt-drive
+            literature's benchmarks are pre-strained 5.26 %). Default 0.1.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
     """
 
@@ -432,6 +450,7 @@ class Belt(_Table):
     max_element_angle: float
     tension_only: bool
     formulation: str
+    max_placement_strain: float
 
     def __post_init__(self) -> None:
         _normalise(self)

@@ -12,6 +12,7 @@ import numpy as np
 
 from . import _beltrs
 from ._progress import make_bar
+from ._checks import warn_scene
 from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
@@ -55,6 +56,7 @@ class Simulation:
         self.scene = scene
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
+        warn_scene(scene)
 
     # --- model facts -------------------------------------------------------------------
     @property
@@ -364,6 +366,7 @@ class Simulation:
         pulley centres and takeup lines must stay the same."""
         self._core.set_scene(scene.to_dict())
         self.scene = scene
+        warn_scene(scene)
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         return self.scene.pulley_index(pulley) if isinstance(pulley, str) else int(pulley)

@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 3; older versions are refused, naming their version)
+//! # Format (version 4; older versions are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (3) |
+//! | 8..12 | format version, `u32` (4) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -27,9 +27,10 @@
 //! element, end element, start and end material coordinates). Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
-//! Version 3 replaced the hand-written scene encoding of versions 1 and 2 by the scene
-//! schema's serde form, so that a new scene field needs no change here. Versions 1 and 2
-//! are refused with their version number (re-run from the scene file).
+//! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
+//! added the contact damping options and the belt's placement limit to them) by the scene
+//! schema's serde form, so that a new scene field needs no change here. Versions 1 to 3 are
+//! refused with their version number (re-run from the scene file).
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -51,11 +52,11 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 3;
-/// Oldest version this build reads. Version 3 stores the scene in its serde form; the
-/// hand-written scene encoding of versions 1 and 2 is no longer read (such a file is refused
+pub const FORMAT_VERSION: u32 = 4;
+/// Oldest version this build reads. Version 4 stores the scene in its serde form; the
+/// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
-pub const OLDEST_READ_VERSION: u32 = 3;
+pub const OLDEST_READ_VERSION: u32 = 4;
 const HEADER_BYTES: usize = 24;
 const CHECKSUM_BYTES: usize = 4;
 

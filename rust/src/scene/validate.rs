@@ -179,6 +179,25 @@ fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
+/// `contact_damping` (N·s/m) and `contact_damping_ratio` of the body `f`: each finite and
+/// ≥ 0, and not both given.
+fn check_contact_damping(f: &str, absolute: Option<f64>, ratio: Option<f64>) -> BeltResult<()> {
+    if let Some(c) = absolute {
+        check_non_negative(&format!("{f}.contact_damping"), c)?;
+    }
+    if let Some(z) = ratio {
+        check_non_negative(&format!("{f}.contact_damping_ratio"), z)?;
+    }
+    if let (Some(c), Some(_)) = (absolute, ratio) {
+        return Err(BeltError::invalid(
+            format!("{f}.contact_damping"),
+            c,
+            format!("give contact_damping (N·s/m) or {f}.contact_damping_ratio (fraction of critical), not both"),
+        ));
+    }
+    Ok(())
+}
+
 fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
     if let FrictionModel::StickForce {
         static_coefficient,
@@ -230,6 +249,7 @@ impl Scene {
                 ));
             }
         }
+        check_positive("belt.max_placement_strain", b.max_placement_strain)?;
         check_positive("belt.max_element_angle", b.max_element_angle)?;
         if b.max_element_angle > std::f64::consts::FRAC_PI_3 {
             return Err(BeltError::invalid(
@@ -277,7 +297,7 @@ impl Scene {
                 check_positive(&format!("{f}.inertia"), inertia)?;
             }
             check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
-            check_non_negative(&format!("{f}.contact_damping"), p.contact_damping)?;
+            check_contact_damping(&f, p.contact_damping, p.contact_damping_ratio)?;
             check_friction(&format!("{f}.friction"), &p.friction)?;
             if p.contact_stiffness == 0.0 && !p.friction.is_none() {
                 // Friction needs a normal force: it would be silently ignored.
@@ -347,7 +367,7 @@ impl Scene {
             check_positive(&format!("{f}.radius"), d.radius)?;
             check_positive(&format!("{f}.inertia"), d.inertia)?;
             check_positive(&format!("{f}.contact_stiffness"), d.contact_stiffness)?;
-            check_non_negative(&format!("{f}.contact_damping"), d.contact_damping)?;
+            check_contact_damping(&f, d.contact_damping, d.contact_damping_ratio)?;
             check_friction(&format!("{f}.friction"), &d.friction)?;
             check_non_negative(&format!("{f}.resistance"), d.resistance)?;
             check_non_negative(&format!("{f}.rotating_mass"), d.rotating_mass)?;
