@@ -29,7 +29,7 @@ import typing
 from dataclasses import MISSING, dataclass, field, fields, is_dataclass
 from typing import Any, Callable, Mapping, Optional, Sequence, Union
 
-from ._beltrs import check_scene, scene_defaults
+from ._beltrs import check_scene, check_scene_table, scene_defaults, unknown_key_rule
 
 __all__ = [
     "Belt",
@@ -81,6 +81,7 @@ def _engine_table(table: str) -> Callable[[type], type]:
                 setattr(cls, name, tuple(value))
             else:
                 setattr(cls, name, value)
+        cls._engine_table = table  # type: ignore[attr-defined]
         return cls
 
     return apply
@@ -689,6 +690,21 @@ def _normalise(obj: Any) -> None:
 def _from_dict(cls: type, data: Mapping[str, Any]) -> Any:
     """``cls`` built from a dict form already checked by the engine."""
     return cls(**{k: _coerce(tp, data[k]) for k, tp in _hints(cls).items() if k in data})
+
+
+def _read_dataclass(cls: type, data: Any, path: str) -> Any:
+    """``cls`` (a scene dataclass) read strictly from its dict form, messages naming paths
+    from ``path``: the engine checks keys and types (its table ``cls._engine_table``)."""
+    if isinstance(data, cls):
+        return data
+    check_scene_table(cls._engine_table, data, path)  # type: ignore[attr-defined]
+    return _from_dict(cls, data)
+
+
+def unknown_key_message(path: str, key: Any, known: Sequence[str]) -> str:
+    """``path = 'key': unknown key, did you mean 'x'? (known keys here: ...)``, with the
+    engine's suggestion (for tables read in Python, e.g. ``beltrs.conveyor``'s)."""
+    return f"{path} = {str(key)!r}: {unknown_key_rule(str(key), [str(k) for k in known])}"
 
 
 def field_default(cls: type, name: str) -> Any:

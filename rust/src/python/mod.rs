@@ -568,6 +568,20 @@ fn check_scene(scene: &Bound<'_, PyAny>) -> PyResult<()> {
     guarded(|| scene::scene_from_py(scene).map(|_| ()).map_err(to_py))
 }
 
+/// Check `value` as the scene table `table` (`"start_curve"`, `"pulley"`, ...), naming paths
+/// from `path`; raises `SceneError`.
+#[pyfunction]
+fn check_scene_table(table: &str, value: &Bound<'_, PyAny>, path: &str) -> PyResult<()> {
+    guarded(|| scene::check_table(table, value, path).map_err(to_py))
+}
+
+/// The rule text for an unknown key `key` among `known`: "unknown key, did you mean 'x'?
+/// (known keys here: ...)", the suggestion being the scene reader's (difflib's choice).
+#[pyfunction]
+fn unknown_key_rule(key: &str, known: Vec<String>) -> String {
+    crate::suggest::unknown_key_rule(key, known.iter().map(String::as_str))
+}
+
 /// The defaults of every table of the scene format (`"scene"`, `"belt"`, `"pulley"`,
 /// `"friction"`, `"takeup"`, `"drive"`, `"start_curve"`, `"brake"`, `"idler"`, `"load"`,
 /// `"solver"`, `"recording"`), each a dict of every key; required keys hold None.
@@ -583,6 +597,8 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
+    m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;

@@ -174,6 +174,30 @@ pub fn start_curve_from_py(obj: &Bound<'_, PyAny>, field: &str) -> BeltResult<St
     Ok(curve)
 }
 
+/// Check `obj` as the scene table `table` (a key of [`defaults`]), messages naming paths
+/// from `path` (e.g. `conveyor.drives[0].start_curve`): unknown keys, types, required keys.
+pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResult<()> {
+    match table {
+        "scene" => read::<Scene>(obj, path).map(drop),
+        "belt" => read::<BeltParams>(obj, path).map(drop),
+        "pulley" => read::<PulleySpec>(obj, path).map(drop),
+        "friction" => read::<FrictionKeys>(obj, path).map(drop),
+        "takeup" => read::<TakeupSpec>(obj, path).map(drop),
+        "drive" => read::<DriveSpec>(obj, path).map(drop),
+        "start_curve" => read::<StartCurve>(obj, path).map(drop),
+        "brake" => read::<BrakeSpec>(obj, path).map(drop),
+        "idler" => read::<IdlerSpec>(obj, path).map(drop),
+        "load" => read::<LoadSpec>(obj, path).map(drop),
+        "solver" => read::<SolverParams>(obj, path).map(drop),
+        "recording" => read::<RecordingParams>(obj, path).map(drop),
+        other => Err(BeltError::invalid(
+            "table",
+            format!("{other:?}"),
+            "not a table of the scene format",
+        )),
+    }
+}
+
 /// A scene (or part) as Python data, in the form of `beltrs.Scene.to_dict()`: dicts, lists
 /// (also for `[x, y]`, which serde hands over as tuples), floats, strings, None.
 pub fn to_py<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
