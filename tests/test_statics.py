@@ -181,3 +181,15 @@ def test_bad_belt_mass_and_lookup():
         p.drive("tail")
     with pytest.raises(beltrs.SceneError, match=r"label = 'nowhere': no such place"):
         p.at("nowhere")
+
+
+def test_takeup_on_the_drive_drum_holds_the_mean():
+    # Head drive and gravity takeup on the same drum, 2 x 20 kN pull: T1 + T2 = 40 kN.
+    # F_U = 0.1962 * (10 * 100) * 2 strands = 392.4 N -> T1 = 20196.2, T2 = 19803.8 N.
+    loop = [Point("head", drive=1.0, takeup=20e3), Section(100, strand="return"), Point("tail"),
+            Section(100, strand="carry")]
+    p = statics.tensions(loop, belt_mass=10.0)
+    head = p.drive("head")
+    assert head.tight == pytest.approx(20196.2, rel=1e-9)
+    assert head.slack == pytest.approx(19803.8, rel=1e-9)
+    assert p.tension[-1] == pytest.approx(head.tight, rel=1e-12)  # the walk closes

@@ -11,24 +11,29 @@ from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, 
 from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
 from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
-from .result import Result
+from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
+from .result import Result, load_result
 from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
 from .simulation import Simulation
 
 __all__ = [
     "DEFAULT_CONTACT_DAMPING_RATIO",
+    "AccuracyWarning",
     "Belt",
     "BeltrsError",
     "BeltrsWarning",
     "Brake",
     "CheckpointError",
     "DivergenceError",
+    "DriveDirectionWarning",
     "Drive",
     "Friction",
     "Idler",
+    "IdlerContactWarning",
     "Load",
     "Model",
+    "NotRelaxedWarning",
     "Pulley",
     "Recording",
     "Result",
@@ -44,6 +49,7 @@ __all__ = [
     "analysis",
     "analytic",
     "conveyor",
+    "load_result",
     "load_scene",
     "scenes",
     "statics",

@@ -362,10 +362,21 @@ class Conveyor:
             if i and not float(p[0]) > float(pts[i - 1][0]):
                 raise SceneError(f"profile[{i}][0] = {p[0]!r}: station distances must increase "
                                  f"(the previous is {pts[i - 1][0]!r})")
+        for name, cls in (("carry", IdlerSet), ("returns", IdlerSet), ("takeup", TakeupSpec)):
+            if not isinstance(getattr(self, name), cls):
+                raise SceneError(f"{name} = {getattr(self, name)!r}: expected a beltrs.conveyor.{cls.__name__}")
+        if not isinstance(self.drives, (list, tuple)) or not all(isinstance(d, DriveSpec) for d in self.drives):
+            raise SceneError(f"drives = {self.drives!r}: expected a list of beltrs.conveyor.DriveSpec")
+        for name in ("curve_radii", "lagging"):
+            value = getattr(self, name)
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+                raise SceneError(f"{name} = {value!r}: expected a list of numbers")
+        for i, radius in enumerate(self.curve_radii):
+            check(f"curve_radii[{i}]", radius, unit="m")
         if len(self.curve_radii) != max(0, len(pts) - 2):
             raise SceneError(f"curve_radii = {list(self.curve_radii)!r}: need one radius per interior station "
                              f"({len(pts) - 2})")
-        bc = self.belt_class
+        self.belt_class  # a known class, or a SceneError naming it
         check("width", self.width, positive=True, unit="m")
         for name in ("top_cover", "bottom_cover"):
             if getattr(self, name) is not None:
@@ -423,7 +434,6 @@ class Conveyor:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
                              "(a quarter or less is advised, docs/stability.md)")
-        del bc
 
     # --- the static calculation ---------------------------------------------------------
     def loop(self, takeup_tension: Optional[float] = None) -> list[Union[statics.Section, statics.Point]]:
@@ -474,6 +484,36 @@ class Conveyor:
         tail pulley along the carry strand, then back along the return strand."""
         method = statics.DIN22101(self.f, self.gravity) if method is None else method
         return statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+
+    def liftoff_radii(self) -> list[tuple[int, str, float, float]]:
+        """Concave vertical curves against lift-off at steady running: for each concave curve
+        (the slope increasing in the direction of the head) and each strand, (station index,
+        strand, radius, minimum radius), m. A belt of weight m'_G·g per metre under tension T
+        lifts off a concave curve of radius R when T > m'_G·g·R (DIN 22101; the empty belt,
+        the worst case), so R_min = T / (m'_G·g) with T the DIN 22101 tension at the curve's
+        middle. The return strand runs a drum diameter further from the centre (R + 2r).
+        Starts raise T above steady running: keep a margin (a dynamic run shows it)."""
+        self.validate()
+        pts = [tuple(map(float, q)) for q in self.profile]
+        prof = self.carry_profile
+        p = self.statics()
+        weight = self.belt_mass * self.gravity
+        out = []
+        s = 0.0
+        k = 0
+        for piece in prof._pieces:
+            if piece.curvature != 0.0:
+                k += 1
+            if piece.curvature > 0:
+                # station index of this curve: the k-th curved interior station
+                station = [i for i in range(1, len(pts) - 1) if _turn(pts, i) != 0.0][k - 1]
+                mid = s + piece.length / 2
+                radius = 1.0 / piece.curvature
+                out.append((station, "carry", radius, float(p.along(mid)) / weight))
+                out.append((station, "return", radius + 2 * self.radius,
+                            float(p.along(2 * prof.length - mid)) / weight))
+            s += piece.length
+        return out
 
     def takeup_tension(self) -> float:
         """Takeup tension per strand, N: ``takeup.tension``, or the smallest that meets
@@ -743,6 +783,8 @@ def loads(text: str) -> Conveyor:
     and wrong types raise :class:`beltrs.SceneError` naming the path."""
     from .scene_file import _need_reader
 
+    if not isinstance(text, str):
+        raise SceneError(f"conveyor text = {text!r}: expected the text of a TOML file (str)")
     toml = _need_reader()
     try:
         data = toml.loads(text)
@@ -760,11 +802,13 @@ def load(path: Any) -> Conveyor:
     """A :class:`Conveyor` from a TOML file (see :func:`loads`); ``.scene()`` builds it."""
     import os
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise SceneError(f"conveyor file = {path!r}: expected a path (str or os.PathLike)")
     try:
         with open(os.fspath(path), encoding="utf-8") as fh:
             text = fh.read()
-    except OSError as exc:
-        raise SceneError(f"conveyor file {os.fspath(path)!r}: {exc.strerror or exc}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(f"conveyor file {os.fspath(path)!r}: {getattr(exc, 'strerror', None) or exc}") from None
     return loads(text)
 
 

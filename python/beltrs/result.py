@@ -1,13 +1,130 @@
-"""Results of a run: NumPy arrays with documented shapes and SI units."""
+"""Results of a run: NumPy arrays with documented shapes and SI units, that travel.
+
+A :class:`Result` saves to NPZ (``Result.save("run.npz")``, readable with plain
+``numpy.load`` and no pickle) or netCDF (``.nc``, through xarray), loads back with
+:func:`load_result` bit for bit, and gives labelled views: :meth:`Result.to_xarray` (named
+dimensions ``time``, ``element``, ``node``, ``pulley``, ``idler``, ``axis``, ``energy_term``,
+units as attributes) and :meth:`Result.to_pandas` (the per-pulley time series). xarray and
+pandas are optional; without them those two methods raise :class:`beltrs.BeltrsError`
+saying what to install. File format: ``docs/results.md``.
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any, Optional
+import json
+import os
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any, Optional, Union
 
 import numpy as np
 
-__all__ = ["Result"]
+from . import _beltrs
+
+__all__ = ["FORMAT", "UNITS", "DIMS", "Result", "load_result"]
+
+#: Format tag written into every saved result (NPZ key / netCDF attribute ``beltrs_format``).
+FORMAT = "beltrs-result/1"
+
+#: Unit of every array channel (UDUNITS spelling; ``"1"`` = a count or a pure number).
+UNITS: dict[str, str] = {
+    "time": "s",
+    "tension": "N",
+    "node_position": "m",
+    "node_velocity": "m/s",
+    "pulley_position": "m",
+    "takeup_travel": "m",
+    "pulley_speed": "rad/s",
+    "friction_torque": "N*m",
+    "drive_torque": "N*m",
+    "brake_torque": "N*m",
+    "pulley_force": "N",
+    "normal_force": "N",
+    "friction_force": "N",
+    "contact_nodes": "1",
+    "slipping_nodes": "1",
+    "idler_force": "N",
+    "idler_speed": "rad/s",
+    "energy": "J",
+    "drive_power": "W",
+}
+
+#: Named dimensions of every array channel.
+DIMS: dict[str, tuple[str, ...]] = {
+    "time": ("time",),
+    "tension": ("time", "element"),
+    "node_position": ("time", "node", "axis"),
+    "node_velocity": ("time", "node", "axis"),
+    "pulley_position": ("time", "pulley", "axis"),
+    "takeup_travel": ("time", "pulley"),
+    "pulley_speed": ("time", "pulley"),
+    "friction_torque": ("time", "pulley"),
+    "drive_torque": ("time", "pulley"),
+    "brake_torque": ("time", "pulley"),
+    "pulley_force": ("time", "pulley", "axis"),
+    "normal_force": ("time", "pulley"),
+    "friction_force": ("time", "pulley"),
+    "contact_nodes": ("time", "pulley"),
+    "slipping_nodes": ("time", "pulley"),
+    "idler_force": ("time", "idler"),
+    "idler_speed": ("time", "idler"),
+    "energy": ("time", "energy_term"),
+}
+
+_DESCRIPTION: dict[str, str] = {
+    "time": "simulated time",
+    "tension": "element force (Kelvin-Voigt: spring + dashpot); element e joins node e to node e+1",
+    "node_position": "node position",
+    "node_velocity": "node velocity (centred on time)",
+    "pulley_position": "pulley centre",
+    "takeup_travel": "takeup travel along its pull direction from the initial centre (+ = towards the counterweight)",
+    "pulley_speed": "pulley angular speed, counter-clockwise positive",
+    "friction_torque": "torque of belt friction on the pulley",
+    "drive_torque": "drive torque on the pulley",
+    "brake_torque": "brake torque on the pulley",
+    "pulley_force": "resultant belt force (contact + friction) on the pulley",
+    "normal_force": "sum of nodal normal contact forces on the pulley",
+    "friction_force": "sum of tangential friction forces on the pulley",
+    "contact_nodes": "belt nodes touching the pulley",
+    "slipping_nodes": "belt nodes slipping on the pulley",
+    "idler_force": "idler normal force",
+    "idler_speed": "idler angular speed",
+    "energy": "energies (terms: coordinate energy_term)",
+    "drive_power": "drive power = drive_torque * pulley_speed",
+}
+
+#: Channels holding counts: integers in memory and on disk.
+_COUNTS = ("contact_nodes", "slipping_nodes")
+#: The per-pulley time series of :meth:`Result.to_pandas`, in column order.
+PULLEY_SERIES = (
+    "takeup_travel",
+    "pulley_speed",
+    "drive_torque",
+    "drive_power",
+    "brake_torque",
+    "friction_torque",
+    "normal_force",
+    "friction_force",
+    "contact_nodes",
+    "slipping_nodes",
+)
+#: Scalar attributes of a Result and their types, saved beside the arrays.
+_SCALARS = {"dt": float, "wall_time": float, "interrupted": bool, "record_every": int}
+_LISTS = ("energy_columns", "stages", "pulley_names")
+_DESCRIPTORS = ("beltrs_format", "units", "dims", "metadata_types")
+
+
+def _require(module: str, what: str) -> Any:
+    """Import an optional dependency or raise a BeltrsError saying how to get it."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        raise _beltrs.BeltrsError(
+            f"{what} needs the optional package {module!r}: pip install {module} "
+            f"(or pip install 'beltrs[test]', which brings xarray and pandas)"
+        ) from None
 
 
 @dataclass
@@ -18,7 +135,7 @@ class Result:
     Element ``e`` joins node ``e`` to node ``e + 1`` (the last closes the loop).
 
     Attributes:
-        time: ``[n]`` simulated time, s.
+        time: ``[n]`` simulated time, s. The last instant is the end of the run.
         tension: ``[n, E]`` element force (Kelvin-Voigt: spring + dashpot), N; None if not
             recorded.
         node_position: ``[n, E, 2]`` node positions, m; None if not recorded.
@@ -34,8 +151,8 @@ class Result:
         pulley_force: ``[n, P, 2]`` resultant belt force (contact + friction) on the pulley, N.
         normal_force: ``[n, P]`` sum of nodal normal contact forces, N.
         friction_force: ``[n, P]`` sum of tangential friction forces on the pulley, N.
-        contact_nodes: ``[n, P]`` nodes touching each pulley.
-        slipping_nodes: ``[n, P]`` of those, nodes slipping.
+        contact_nodes: ``[n, P]`` nodes touching each pulley (int64 count).
+        slipping_nodes: ``[n, P]`` of those, nodes slipping (int64 count).
         idler_force: ``[n, I]`` idler normal force, N.
         idler_speed: ``[n, I]`` idler angular speed, rad/s.
         energy: ``[n, 7]`` J; columns in ``energy_columns``: kinetic, strain, bending,
@@ -47,7 +164,11 @@ class Result:
         pulley_names: names of the pulleys.
         record_every: steps between recorded instants at the end of the run: the requested
             interval, doubled each time the recording reached its bound (``max_samples``)
-            and dropped every other instant.
+            and dropped every other instant. The last instant (the end of the run) may
+            follow the one before it after fewer steps.
+        metadata: free-form facts saved with the result (``beltrs run`` stores the scene
+            as TOML, the beltrs version, the date, relaxation figures, ...): str, bool,
+            int, float, lists of str, or NumPy arrays. Default empty.
     """
 
     time: np.ndarray
@@ -75,35 +196,349 @@ class Result:
     interrupted: bool = False
     pulley_names: list[str] = field(default_factory=list)
     record_every: int = 1
+    metadata: dict[str, Any] = field(default_factory=dict)
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":
-        return cls(
-            time=rec["time"],
-            tension=rec.get("tension"),
-            node_position=rec.get("node_position"),
-            node_velocity=rec.get("node_velocity"),
-            pulley_position=rec["pulley_position"],
-            takeup_travel=rec["takeup_travel"],
-            pulley_speed=rec["pulley_speed"],
-            friction_torque=rec["friction_torque"],
-            drive_torque=rec["drive_torque"],
-            brake_torque=rec["brake_torque"],
-            pulley_force=rec["pulley_force"],
-            normal_force=rec["normal_force"],
-            friction_force=rec["friction_force"],
-            contact_nodes=rec["contact_nodes"],
-            slipping_nodes=rec["slipping_nodes"],
-            idler_force=rec["idler_force"],
-            idler_speed=rec["idler_speed"],
-            energy=rec["energy"],
-            energy_columns=list(rec["energy_columns"]),
-            **meta,
-        )
+        arrays = {name: rec.get(name) for name in DIMS}
+        for name in _COUNTS:
+            # Counts are whole numbers by construction; the engine hands them over as f64.
+            arrays[name] = np.asarray(arrays[name]).astype(np.int64)
+        return cls(**arrays, energy_columns=list(rec["energy_columns"]), **meta)
 
+    # --- access ------------------------------------------------------------------------
     def energy_of(self, name: str) -> np.ndarray:
         """One energy column by name (``"kinetic"``, ``"total"``, ...), J, shape ``[n]``."""
         return self.energy[:, self.energy_columns.index(name)]
 
+    @property
+    def drive_power(self) -> np.ndarray:
+        """``[n, P]`` power the drives deliver to the pulleys, W: ``drive_torque *
+        pulley_speed`` (positive when the drive drives, negative when it holds back)."""
+        return self.drive_torque * self.pulley_speed
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """Every recorded array channel by name (channels not recorded are absent)."""
+        return {name: getattr(self, name) for name in DIMS if getattr(self, name) is not None}
+
     def __len__(self) -> int:
         return int(self.time.shape[0])
+
+    def __eq__(self, other: object) -> bool:
+        """Equal when every array is equal bit for bit (NaNs in the same places) and every
+        other field is equal."""
+        if not isinstance(other, Result):
+            return NotImplemented
+        for f in fields(self):
+            a, b = getattr(self, f.name), getattr(other, f.name)
+            if f.name == "metadata":
+                if a.keys() != b.keys() or not all(_same(a[k], b[k]) for k in a):
+                    return False
+            elif not _same(a, b):
+                return False
+        return True
+
+    # --- saving ------------------------------------------------------------------------
+    def save(self, path: Union[str, os.PathLike], format: Optional[str] = None) -> Path:  # noqa: A002
+        """Save to ``path``, atomically (a temporary file, then a rename).
+
+        Args:
+            path: file to write. ``.nc`` writes netCDF-4 (needs xarray and the h5netcdf or
+                netCDF4 package); anything else writes NPZ (uncompressed, readable with
+                ``numpy.load`` without pickle).
+            format: ``"npz"`` or ``"netcdf"`` to override the choice by suffix.
+
+        Every array keeps its dtype (counts stay int64), every float its bits; units,
+        dimension names, the scalar fields and :attr:`metadata` are stored beside them.
+        :func:`load_result` reads both formats back into an equal Result.
+
+        Returns:
+            the path written.
+
+        Raises:
+            beltrs.BeltrsError: unknown ``format``, metadata of a type that cannot be
+                stored, or netCDF without xarray/h5netcdf.
+        """
+        path = Path(path)
+        fmt = format or ("netcdf" if path.suffix.lower() in (".nc", ".nc4", ".netcdf") else "npz")
+        if fmt not in ("npz", "netcdf"):
+            raise _beltrs.BeltrsError(f"format = {format!r}: must be 'npz' or 'netcdf'")
+        if not path.parent.is_dir():
+            raise _beltrs.BeltrsError(f"{path}: the directory {path.parent} does not exist")
+        meta_types = _metadata_types(self.metadata)
+        from .scene_file import atomic_write
+
+        if fmt == "npz":
+            payload = self._npz_payload(meta_types)
+            atomic_write(path, lambda fh: np.savez(fh, **payload), binary=True)
+        else:
+            ds = self.to_xarray()
+            engine = _netcdf_engine()
+            tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+            try:
+                ds.to_netcdf(tmp, engine=engine, format="NETCDF4" if engine == "netcdf4" else None)
+                os.replace(tmp, path)
+            finally:
+                if tmp.exists():
+                    tmp.unlink()
+        return path
+
+    def _npz_payload(self, meta_types: dict[str, str]) -> dict[str, np.ndarray]:
+        out: dict[str, np.ndarray] = dict(self.arrays())
+        for name in _LISTS:
+            out[name] = np.array(list(getattr(self, name)), dtype=str)
+        for name, kind in _SCALARS.items():
+            out[name] = np.array(kind(getattr(self, name)))
+        for key, value in self.metadata.items():
+            if key in out or key in _DESCRIPTORS:
+                raise _beltrs.BeltrsError(f"metadata[{key!r}]: the name of a Result field; choose another key")
+            out[key] = np.array(value if meta_types[key] != "list" else list(value), dtype=_npz_dtype(value))
+        out["beltrs_format"] = np.array(FORMAT)
+        out["units"] = np.array(json.dumps({k: UNITS[k] for k in DIMS}))
+        out["dims"] = np.array(json.dumps({k: list(v) for k, v in DIMS.items()}))
+        out["metadata_types"] = np.array(json.dumps(meta_types))
+        return out
+
+    # --- labelled views ----------------------------------------------------------------
+    def to_xarray(self) -> Any:
+        """An ``xarray.Dataset`` with named dimensions and units.
+
+        Dimensions: ``time`` (s, the coordinate), ``element`` (element e joins node e to
+        e + 1), ``node``, ``pulley`` (coordinate: pulley names), ``idler``, ``axis``
+        (``"x"``, ``"y"``), ``energy_term`` (coordinate: energy column names); ``element`` has
+        the coordinate ``distance`` (m along the unstretched belt from node 0, element
+        midpoints) when the Result carries ``metadata["rest_length"]``. Every variable has
+        ``units`` and ``long_name`` attributes; ``drive_power`` (W) is added. Dataset
+        attributes: ``dt``, ``wall_time``, ``interrupted`` (0/1), ``record_every``,
+        ``stages``, ``beltrs_format`` and :attr:`metadata` (lists and bools stored so that
+        netCDF can hold them; :func:`load_result` restores the types).
+
+        >>> ds = res.to_xarray()
+        >>> ds.tension.sel(time=2.0, method="nearest").max()
+        >>> ds.drive_torque.sel(pulley="head").plot()
+
+        Raises:
+            beltrs.BeltrsError: xarray is not installed.
+        """
+        xr = _require("xarray", "Result.to_xarray")
+        data_vars: dict[str, Any] = {}
+        for name, value in self.arrays().items():
+            if name == "time":
+                continue
+            data_vars[name] = (DIMS[name], value, {"units": UNITS[name], "long_name": _DESCRIPTION[name]})
+        data_vars["drive_power"] = (
+            ("time", "pulley"), self.drive_power, {"units": "W", "long_name": _DESCRIPTION["drive_power"]}
+        )
+        coords = {
+            "time": ("time", self.time, {"units": "s", "long_name": "simulated time"}),
+            "pulley": ("pulley", np.array(list(self.pulley_names), dtype=str)),
+            "axis": ("axis", np.array(["x", "y"])),
+            "energy_term": ("energy_term", np.array(list(self.energy_columns), dtype=str)),
+        }
+        rest = self.metadata.get("rest_length")
+        if self.tension is not None and isinstance(rest, np.ndarray) and rest.shape == self.tension.shape[1:]:
+            coords["distance"] = (
+                "element", np.cumsum(rest) - rest / 2,
+                {"units": "m", "long_name": "element midpoint: distance along the unstretched belt from node 0"},
+            )
+        meta_types = _metadata_types(self.metadata)
+        attrs: dict[str, Any] = {
+            "beltrs_format": FORMAT,
+            "dt": float(self.dt),
+            "wall_time": float(self.wall_time),
+            "interrupted": int(bool(self.interrupted)),
+            "record_every": int(self.record_every),
+            "stages": json.dumps(list(self.stages)),
+            "metadata_types": json.dumps(meta_types),
+        }
+        for key, value in self.metadata.items():
+            if key in attrs or key in data_vars or key in coords or key in _DESCRIPTORS:
+                raise _beltrs.BeltrsError(f"metadata[{key!r}]: the name of a Result field; choose another key")
+            kind = meta_types[key]
+            attrs[key] = (
+                int(value) if kind == "bool" else json.dumps(list(value)) if kind == "list" else value
+            )
+        return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+    def to_pandas(self) -> Any:
+        """The per-pulley time series as a ``pandas.DataFrame``.
+
+        Index: ``time`` (s). Columns: a two-level index (quantity, pulley name) over
+        takeup_travel (m), pulley_speed (rad/s), drive_torque (N*m), drive_power (W),
+        brake_torque (N*m), friction_torque (N*m), normal_force (N), friction_force (N),
+        contact_nodes and slipping_nodes (int64 counts). ``df.attrs["units"]`` maps each
+        quantity to its unit.
+
+        >>> df = res.to_pandas()
+        >>> df[("drive_torque", "head")].max()
+        >>> df.xs("takeup", axis=1, level="pulley")     # every series of one pulley
+
+        Raises:
+            beltrs.BeltrsError: pandas is not installed.
+        """
+        pd = _require("pandas", "Result.to_pandas")
+        names = list(self.pulley_names) or [str(j) for j in range(self.takeup_travel.shape[1])]
+        columns = pd.MultiIndex.from_product([list(PULLEY_SERIES), names], names=["quantity", "pulley"])
+        frame = pd.DataFrame(
+            {(q, p): getattr(self, q)[:, j] for q in PULLEY_SERIES for j, p in enumerate(names)},
+            index=pd.Index(self.time, name="time"),
+            columns=columns,
+        )
+        frame.attrs["units"] = {q: UNITS[q] for q in PULLEY_SERIES} | {"time": "s"}
+        return frame
+
+
+def load_result(path: Union[str, os.PathLike]) -> Result:
+    """Read a result written by :meth:`Result.save` (or by ``beltrs run``): NPZ, or netCDF
+    for ``.nc`` files. The Result equals the one saved (arrays bit for bit, counts int64,
+    metadata with their types).
+
+    Raises:
+        beltrs.BeltrsError: the file is missing, not a beltrs result, or of another
+            format version (the message names the file and the problem).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise _beltrs.BeltrsError(f"{path}: no such file")
+    with open(path, "rb") as fh:
+        magic = fh.read(8)
+    if magic.startswith(b"PK"):
+        return _load_npz(path)
+    if magic.startswith(b"\x89HDF") or magic.startswith(b"CDF"):
+        return _load_netcdf(path)
+    raise _beltrs.BeltrsError(f"{path}: not a beltrs result (neither NPZ nor netCDF)")
+
+
+def _load_npz(path: Path) -> Result:
+    try:
+        f = np.load(path, allow_pickle=False)
+    except (OSError, ValueError) as err:
+        raise _beltrs.BeltrsError(f"{path}: cannot be read as NPZ: {err}") from None
+    with f:
+        files = set(f.files)
+        fmt = str(f["beltrs_format"]) if "beltrs_format" in files else None
+        if fmt is not None and fmt != FORMAT:
+            raise _beltrs.BeltrsError(f"{path}: format {fmt!r}, this beltrs reads {FORMAT!r}")
+        missing = [k for k in ("time", "takeup_travel", "energy", "energy_columns") if k not in files]
+        if missing:
+            raise _beltrs.BeltrsError(f"{path}: not a beltrs result (missing {', '.join(missing)})")
+        kw: dict[str, Any] = {name: (f[name] if name in files else None) for name in DIMS}
+        for name in _LISTS:
+            kw[name] = [str(s) for s in f[name]] if name in files else []
+        for name, kind in _SCALARS.items():
+            if name in files:
+                kw[name] = kind(f[name].item())
+        meta_types = json.loads(str(f["metadata_types"])) if "metadata_types" in files else {}
+        known = set(DIMS) | set(_LISTS) | set(_SCALARS) | set(_DESCRIPTORS)
+        metadata: dict[str, Any] = {}
+        for key in f.files:
+            if key in known:
+                continue
+            metadata[key] = _from_npz(f[key], meta_types.get(key))
+    for name in _COUNTS:
+        if kw[name] is not None:
+            kw[name] = kw[name].astype(np.int64)  # files of beltrs ≤ 0.1 stored counts as floats
+    return Result(**kw, metadata=metadata)
+
+
+def _load_netcdf(path: Path) -> Result:
+    xr = _require("xarray", f"reading the netCDF file {path}")
+    try:
+        ds = xr.load_dataset(path, engine=_netcdf_engine())
+    except (OSError, ValueError) as err:
+        raise _beltrs.BeltrsError(f"{path}: cannot be read as netCDF: {err}") from None
+    fmt = ds.attrs.get("beltrs_format")
+    if fmt != FORMAT:
+        raise _beltrs.BeltrsError(f"{path}: format {fmt!r}, this beltrs reads {FORMAT!r}")
+    kw: dict[str, Any] = {name: (ds[name].values if name in ds.variables else None) for name in DIMS}
+    kw["pulley_names"] = [str(s) for s in ds["pulley"].values]
+    kw["energy_columns"] = [str(s) for s in ds["energy_term"].values]
+    kw["stages"] = list(json.loads(ds.attrs["stages"]))
+    for name, kind in _SCALARS.items():
+        kw[name] = kind(ds.attrs[name])
+    meta_types = json.loads(ds.attrs.get("metadata_types", "{}"))
+    metadata: dict[str, Any] = {}
+    for key, kind in meta_types.items():
+        value = ds.attrs[key]
+        if kind == "bool":
+            value = bool(value)
+        elif kind == "list":
+            value = list(json.loads(value))
+        elif kind == "array":
+            value = np.asarray(value)
+        elif kind == "int":
+            value = int(value)
+        elif kind == "float":
+            value = float(value)
+        else:
+            value = str(value)
+        metadata[key] = value
+    return Result(**kw, metadata=metadata)
+
+
+def _netcdf_engine() -> str:
+    import importlib.util
+
+    _require("xarray", "netCDF files")
+    if importlib.util.find_spec("h5netcdf") is not None and importlib.util.find_spec("h5py") is not None:
+        return "h5netcdf"
+    if importlib.util.find_spec("netCDF4") is not None:
+        return "netcdf4"
+    raise _beltrs.BeltrsError(
+        "netCDF files need the optional packages 'h5netcdf' and 'h5py' (or 'netCDF4'): "
+        "pip install h5netcdf h5py; or save to .npz"
+    )
+
+
+def _metadata_types(metadata: dict[str, Any]) -> dict[str, str]:
+    """The storable type of each metadata value, else a BeltrsError naming the key."""
+    out = {}
+    for key, value in metadata.items():
+        if not isinstance(key, str) or not key.isidentifier():
+            raise _beltrs.BeltrsError(f"metadata key {key!r}: must be a name (letters, digits, _)")
+        if isinstance(value, bool) or isinstance(value, np.bool_):
+            out[key] = "bool"
+        elif isinstance(value, (int, np.integer)):
+            out[key] = "int"
+        elif isinstance(value, (float, np.floating)):
+            out[key] = "float"
+        elif isinstance(value, str):
+            out[key] = "str"
+        elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+            out[key] = "list"
+        elif isinstance(value, np.ndarray) and value.dtype.kind in "biufU":
+            out[key] = "array"
+        else:
+            raise _beltrs.BeltrsError(
+                f"metadata[{key!r}] = {value!r:.60}: must be str, bool, int, float, a list of str "
+                f"or a NumPy array of numbers or str"
+            )
+    return out
+
+
+def _npz_dtype(value: Any) -> Any:
+    if isinstance(value, (list, tuple)):
+        return str
+    return None
+
+
+def _from_npz(value: np.ndarray, kind: Optional[str]) -> Any:
+    if kind == "array":
+        return value
+    if kind == "list":
+        return [str(s) for s in value]
+    if kind is None:  # a file written by another tool or an older beltrs: scalars as Python values
+        return value.item() if value.ndim == 0 else value
+    item = value.item()
+    return {"bool": bool, "int": int, "float": float, "str": str}[kind](item)
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        if a is None or b is None:
+            return False
+        a, b = np.asarray(a), np.asarray(b)
+        return a.dtype == b.dtype and a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind in "fc")
+    if isinstance(a, float) and isinstance(b, float) and np.isnan(a) and np.isnan(b):
+        return True
+    return type(a) is type(b) and a == b

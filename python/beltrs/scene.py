@@ -503,7 +503,9 @@ class Recording(_Table):
     Attributes:
         duration: simulated time of the run, s, >= 0. Default 1.
         interval: sample about every this many seconds (rounded to whole steps), s, > 0.
-            Default None: every ``every`` steps, or every 0.01 s if ``every`` is None too.
+            Default None: every ``every`` steps, or, if ``every`` is None too, the default
+            of :meth:`beltrs.Simulation.run` (:meth:`~beltrs.Simulation.default_record_interval`:
+            from the belt's wave speed and the shortest strand, at most 0.01 s).
         every: sample every this many steps, >= 1. Give ``interval`` or ``every``, not
             both. Default None.
         channels: optional large arrays to record, from ``"tension"``,
@@ -529,8 +531,8 @@ class Recording(_Table):
         kw: dict[str, Any] = {name: name in self.channels for name in CHANNELS}
         if self.every is not None:
             kw["record_every"] = self.every
-        else:
-            kw["record_interval"] = 0.01 if self.interval is None else self.interval
+        elif self.interval is not None:
+            kw["record_interval"] = self.interval
         return kw
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 import os
 import time as _time
@@ -10,17 +11,23 @@ from typing import Any, Optional, Union
 
 import numpy as np
 
-from . import _beltrs
-from ._progress import make_bar
+from . import _beltrs, diagnostics
 from ._checks import warn_scene
+from ._progress import make_bar, make_ticker
 from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
 
-__all__ = ["DEFAULT_MAX_MEMORY", "Simulation"]
+__all__ = ["DEFAULT_MAX_MEMORY", "MAX_RECORD_INTERVAL", "Simulation"]
 
 #: Default bound on the memory of a run's recording, bytes (256 MiB); see :meth:`Simulation.run`.
 DEFAULT_MAX_MEMORY = 256 * 2**20
+#: Longest default recording interval, s (100 samples per second): see
+#: :meth:`Simulation.default_record_interval`.
+MAX_RECORD_INTERVAL = 0.01
+#: Samples per period of the shortest strand's fundamental longitudinal mode in the default
+#: recording interval (:meth:`Simulation.default_record_interval`).
+SAMPLES_PER_STRAND_PERIOD = 20
 _MAX_STEPS = 2**63 - 1
 _CHUNK_SECONDS = 0.1
 
@@ -56,7 +63,9 @@ class Simulation:
         self.scene = scene
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
+        self._placed = True  # still at the initial placement: never relaxed nor run
         warn_scene(scene)
+        diagnostics.check_scene(self)
 
     # --- model facts -------------------------------------------------------------------
     @property
@@ -116,6 +125,34 @@ class Simulation:
         are :meth:`node_masses`)."""
         return np.asarray(self._core.node_mass)
 
+    def default_record_interval(self) -> float:
+        """Recording interval :meth:`run` uses when given neither ``record_every`` nor
+        ``record_interval``, s: the smaller of :data:`MAX_RECORD_INTERVAL` (0.01 s) and
+        1/20 of the period of the shortest free strand's fundamental longitudinal mode,
+        ``2 L / c`` with ``c = sqrt(EA / m')`` the belt's axial wave speed (m' its own mass
+        per metre, the fastest case) and ``L`` the tangent-to-tangent length of the
+        shortest strand between consecutive pulleys. 20 samples a period resolve a wave
+        front crossing the strand and its reflections at the pulleys, which are the fastest
+        events a conveyor start or stop produces; the 0.01 s cap keeps drive and brake
+        events (torque pulses of 0.05 s and more) on ≥ 5 samples. :meth:`run` rounds it to
+        whole steps (at least one).
+
+        Examples: case H (100 m strands, c = 276 m/s) → 0.01 s; a belt drive with 0.5 m
+        strands and c ≈ 1 km/s → 25 µs (then every step, if the step is larger).
+        """
+        belt = self.scene.belt
+        c = math.sqrt(belt.axial_stiffness / belt.mass_per_length)
+        pulleys = self.scene.pulleys
+        strands = []
+        for a, b in zip(pulleys, pulleys[1:] + pulleys[:1]):
+            if a is b:
+                continue
+            d = math.dist(a.center, b.center)
+            offset = abs(a.radius - b.radius) if a.wrap == b.wrap else a.radius + b.radius
+            strands.append(math.sqrt(d * d - offset * offset) if d > offset else d)
+        length = min(strands) if strands else self.path_length / 2
+        return min(MAX_RECORD_INTERVAL, 2.0 * length / c / SAMPLES_PER_STRAND_PERIOD)
+
     # --- state -------------------------------------------------------------------------
     def node_masses(self) -> np.ndarray:
         """Node masses now, kg, shape ``[E]``: the belt's (:attr:`node_mass`) plus the
@@ -160,6 +197,7 @@ class Simulation:
         friction: bool = False,
         tolerance: float = 1e-7,
         max_steps: int = 5_000_000,
+        progress: Optional[bool] = None,
     ) -> dict[str, Any]:
         """Relax to static equilibrium (thesis §6.2); simulated time does not advance.
 
@@ -171,6 +209,9 @@ class Simulation:
             tolerance: converged when the largest out-of-balance force is below this
                 fraction of the largest tension. Default 1e-7.
             max_steps: give up after this many relaxation steps.
+            progress: show the elapsed wall time on stderr while relaxing (one Rust call,
+                so no fraction done), then steps and residual. Default None: only when
+                stderr is a terminal.
 
         Returns:
             dict with ``steps``, ``residual``, ``converged``, ``resets``.
@@ -179,12 +220,20 @@ class Simulation:
             beltrs.BeltrsError: if the relaxation does not converge.
         """
         max_steps = _whole("max_steps", max_steps)
-        report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
+        ticker = make_ticker(progress, "beltrs: relaxing to static equilibrium")
+        try:
+            report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
+        except BaseException:
+            ticker.close("failed")
+            raise
+        ticker.close(f"{report['steps']} steps, residual {report['residual']:.2e}")
+        self._placed = False
         if not report["converged"]:
             raise _beltrs.BeltrsError(
                 f"stabilise did not converge in {report['steps']} steps: residual {report['residual']:.3e} "
                 f"> tolerance {tolerance:.3e}"
             )
+        diagnostics.check_idlers(self)
         return report
 
     def run(
@@ -206,9 +255,13 @@ class Simulation:
 
         Args:
             duration: simulated time, s (rounded to whole steps).
-            record_every: sample every this many steps. Default: every step unless
-                ``record_interval`` is given.
+            record_every: sample every this many steps. Give this or
+                ``record_interval``, not both.
             record_interval: sample about every this many seconds (rounded to whole steps).
+                Default (neither given): :meth:`default_record_interval`, from the scene's
+                wave physics, at most 0.01 s. The final state is always recorded: the last
+                instant of the Result is the end of the run (it may follow the one before
+                after fewer steps than the others).
             tension, node_position, node_velocity: record these large arrays. Default True.
             max_samples: most recorded instants kept (>= 2). When the buffer is full, every
                 other instant is dropped and the interval doubles, so the result always
@@ -239,7 +292,7 @@ class Simulation:
             raise _beltrs.SceneError(f"duration = {duration}: must be a finite number ≥ 0 (s)")
         if record_every is not None and record_interval is not None:
             raise _beltrs.SceneError("give record_every or record_interval, not both")
-        every = 1
+        every = max(1, int(round(self.default_record_interval() / self.dt)))
         if record_every is not None:
             if int(record_every) < 1:
                 raise _beltrs.SceneError(f"record_every = {record_every}: must be ≥ 1")
@@ -268,6 +321,11 @@ class Simulation:
         if checkpoint is not None and not (np.isfinite(checkpoint_interval) and checkpoint_interval >= 0):
             raise _beltrs.SceneError(f"checkpoint_interval = {checkpoint_interval}: must be ≥ 0 (s)")
 
+        if self._placed:
+            diagnostics.check_relaxed(self)
+            diagnostics.check_idlers(self)
+            self._placed = False
+
         core = self._core
         target = int(core.step_count) + steps
         t0 = _time.perf_counter()
@@ -294,6 +352,7 @@ class Simulation:
             except KeyboardInterrupt:
                 interrupted = True
             core.end_recording(interrupted)
+            rec, record_every = self._with_final_sample(tension, node_position, node_velocity, interrupted)
         except _beltrs.DivergenceError as err:
             err.result = self._result(_time.perf_counter() - t0)  # type: ignore[attr-defined]
             self.last_result = err.result  # type: ignore[attr-defined]
@@ -302,23 +361,45 @@ class Simulation:
             bar.close()
         if checkpoint is not None:
             self.save_checkpoint(checkpoint)
-        self.last_result = self._result(_time.perf_counter() - t0)
+        self.last_result = self._result(_time.perf_counter() - t0, rec, record_every)
         return self.last_result
+
+    def _with_final_sample(
+        self, tension: bool, node_position: bool, node_velocity: bool, interrupted: bool
+    ) -> tuple[dict[str, Any], int]:
+        """The recording just closed, with the final state appended when it fell between
+        two instants of the recording grid, so that the last instant is the end of the
+        run; and the grid's interval in steps."""
+        core = self._core
+        rec = dict(core.recording())
+        every = int(core.record_every)
+        times = np.asarray(rec["time"])
+        if len(times) and times[-1] == self.time:
+            return rec, every
+        # Sample the final state through a fresh one-instant recording and append it.
+        core.begin_recording(1, tension, node_position, node_velocity, 2)
+        core.end_recording(interrupted)
+        last = dict(core.recording())
+        for key, value in rec.items():
+            if isinstance(value, np.ndarray) and key in last:
+                rec[key] = np.concatenate([value, np.asarray(last[key])], axis=0)
+        return rec, every
 
     def sample_bytes(self, tension: bool = True, node_position: bool = True, node_velocity: bool = True) -> int:
         """Bytes one recorded instant takes with these channels:
         ``8 * (8 + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
         return int(self._core.sample_bytes(tension, node_position, node_velocity))
 
-    def _result(self, wall: float) -> Result:
+    def _result(self, wall: float, rec: Optional[dict[str, Any]] = None, record_every: Optional[int] = None) -> Result:
         return Result._from_core(
-            self._core.recording(),
+            dict(self._core.recording()) if rec is None else rec,
             dt=self.dt,
             stages=self.stages,
             wall_time=wall,
             interrupted=bool(self._core.interrupted),
             pulley_names=[p.name for p in self.scene.pulleys],
-            record_every=int(self._core.record_every),
+            record_every=int(self._core.record_every) if record_every is None else record_every,
+            metadata={"rest_length": self.rest_length},
         )
 
     # --- checkpoints -------------------------------------------------------------------
@@ -354,11 +435,13 @@ class Simulation:
         sim._core = core
         sim.scene = scene if scene is not None else Scene.from_dict(dict(core.scene_dict()))
         sim.last_result = None
+        sim._placed = False
         return sim
 
     def step(self, steps: int = 1) -> None:
         """Advance ``steps`` steps (a whole number ≥ 0) without recording."""
         self._core.step(_whole("steps", steps))
+        self._placed = False
 
     # --- change a parameter and continue ----------------------------------------------
     def set_scene(self, scene: Scene) -> None:
@@ -367,6 +450,7 @@ class Simulation:
         self._core.set_scene(scene.to_dict())
         self.scene = scene
         warn_scene(scene)
+        diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         return self.scene.pulley_index(pulley) if isinstance(pulley, str) else int(pulley)

@@ -14,7 +14,8 @@ takeup). :func:`tensions` walks the loop once:
 2. the peripheral force F_U = Σ ΔT + Σ local resistances, the force the drives supply
    together; each drive takes its share of F_U out of the belt (T2 = T1 − share · F_U);
 3. the takeup fixes the absolute level: the tension where it sits is its tension per
-   strand (a gravity takeup's pull over two strands: pull / 2);
+   strand (a gravity takeup's pull over two strands: pull / 2); on a drum that also drives
+   (or has a local resistance) it holds the mean of the tensions arriving and leaving;
 4. from the takeup, in the direction of travel, T grows by each section's ΔT and each
    point's local resistance and falls at each drive, back to the takeup (the loop closes
    exactly because the drives' shares add up to 1).
@@ -410,7 +411,8 @@ class Point:
         drive: share of the peripheral force F_U this drive supplies, in [0, 1]; the shares
             of all points add up to 1 (a single drive: 1). Default 0 (not a drive).
         takeup: tension the takeup holds at this point, N (a gravity takeup with pull P on
-            a pulley holds P/2 in each strand). Exactly one point has it. Default None.
+            a pulley holds P/2 in each strand; on a drive drum, the mean of T1 and T2).
+            Exactly one point has it. Default None.
         resistance: local resistance the belt meets here, N (pulley bearings and belt
             bending at the pulley, belt cleaners, skirt boards, the acceleration of the
             material at a loading point Q·v = m'_L·v²). Default 0.
@@ -591,7 +593,11 @@ def tensions(loop: Sequence[Union[Section, Point]], belt_mass: float, method: Op
                     ky[j] = method.ky if method.ky is not None else cema_ky(mg, s.material, average[j], s.idler_pitch)
         effective = float(rise.sum() + sum(it.resistance for it in items if isinstance(it, Point)))
         dist, ten, lab = [], [], []
-        t, d, j = t_takeup, 0.0, 0
+        # The takeup holds the mean of the tensions arriving and leaving (a gravity takeup's
+        # pull is their sum): the same thing on a plain pulley, half the drop on a drive drum.
+        first = items[0]
+        t = t_takeup - 0.5 * (first.resistance - first.drive * effective)  # type: ignore[union-attr]
+        d, j = 0.0, 0
         starts = np.zeros(len(sections))
         arrive: dict[int, int] = {}  # item position -> index of its "in" place
         for n, it in enumerate(items):

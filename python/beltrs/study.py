@@ -1,5 +1,8 @@
-"""What accuracy costs in time: run a scene at a ladder of settings and tabulate the answer,
-its error, the observed order of convergence, the wall time and the node-steps.
+"""Studies. :func:`sweep` runs many independent cases (start-up studies: curves × loads ×
+takeups × stops) on local processes or a Dask cluster into one xarray Dataset
+(``beltrs.sweep``, docs/sweeps.md). The rest of this module is about what accuracy costs in
+time: run a scene at a ladder of settings and tabulate the answer, its error, the observed
+order of convergence, the wall time and the node-steps.
 
 >>> import beltrs
 >>> from beltrs import study
@@ -52,6 +55,7 @@ from .analysis import arrival_time, hustrulid_tangent_tensions, hustrulid_wave_s
 from .analytic import axial_wave_speed, two_pulley_takeup_statics
 from .scene import Drive, Friction, Scene
 from .simulation import Simulation
+from .sweep import set_field, summarise, sweep
 
 __all__ = [
     "Quantity",
@@ -64,7 +68,10 @@ __all__ = [
     "hustrulid_wave_speed_quantity",
     "pareto_front",
     "peak_tension",
+    "set_field",
     "slip",
+    "summarise",
+    "sweep",
     "takeup_displacement",
     "tension_difference",
     "wave_arrival_time",
