@@ -13,25 +13,28 @@
 
 #![warn(missing_docs)]
 
+pub mod belt;
 pub mod checkpoint;
 pub mod contact;
+pub mod drives;
 pub mod error;
-pub mod forces;
 pub mod friction;
 pub mod geometry;
+pub mod integrate;
 pub mod loads;
 pub mod model;
 pub mod presets;
 pub mod record;
 pub mod scene;
 pub mod simulation;
-pub mod start_curve;
 pub mod state;
 pub mod suggest;
 
 #[cfg(feature = "python")]
 mod python;
 
+pub use belt::node as forces;
+pub use drives::start_curve;
 pub use error::{BeltError, BeltResult};
 pub use model::{Model, Stage};
 pub use scene::Scene;

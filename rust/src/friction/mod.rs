@@ -8,6 +8,8 @@
 //! never exceeds the stick force, friction can stop a slip but never reverse it: there is
 //! no oscillation about zero relative speed.
 
+pub mod creep;
+
 use crate::contact::{IdlerContact, PulleyContacts};
 use crate::forces::perp;
 use nalgebra::Vector2;

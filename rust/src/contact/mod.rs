@@ -5,6 +5,8 @@
 //! of penetration, f = k (R − a), so k = k_c / R. Contact damping (optional, not in the
 //! thesis) acts on the normal approach speed and never pulls the belt onto the body.
 
+pub mod nonlinear;
+
 use crate::state::ContactWindow;
 use nalgebra::Vector2;
 

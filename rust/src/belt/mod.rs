@@ -1,0 +1,9 @@
+//! Belt formulations. Each one turns belt positions and velocities into element tensions
+//! and node forces; contact, friction, drives and recording see only belt points.
+//!
+//! - [`node`]: Hustrulid's (1993) discrete node model (Kelvin-Voigt axial elements,
+//!   rotational bending springs, node weights).
+//! - [`rigid`]: Kubas's (2014) chain of rigid bodies joined by Kelvin–Voigt spring-dampers.
+
+pub mod node;
+pub mod rigid;

@@ -1,0 +1,15 @@
+//! Kubas's (2014) rigid-body belt: a chain of rigid bodies with three coordinates each
+//! (x, y of the mass centre and the angle φ, Kubas eq. 1), homogeneous thin links of mass
+//! mᵢ and length lᵢ with Iᵢ = mᵢlᵢ²/12 (eq. 2), joined by translational and torsional
+//! Kelvin–Voigt spring-dampers (SDEs, eq. 20–23).
+//!
+//! - [`sdes`]: the SDE forces and torques between neighbouring bodies.
+
+pub mod sdes;
+
+/// Mass moment of inertia of a thin homogeneous link about its mass centre, mᵢlᵢ²/12
+/// (Kubas eq. 2), kg·m².
+#[inline]
+pub fn link_inertia(mass: f64, length: f64) -> f64 {
+    mass * length * length / 12.0
+}
