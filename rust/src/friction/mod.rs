@@ -25,9 +25,9 @@ pub struct StickScratch {
     sticking: Vec<bool>,
     /// Tangential friction force of each contact (positive along t_i on the pulley), N.
     pub force: Vec<f64>,
-    /// Storage of the slip loop's two candidate heaps (see `release_slipping`).
-    heap_pos: Vec<Candidate>,
-    heap_neg: Vec<Candidate>,
+    /// Storage of the slip loop's two sorted candidate lists (see `release_slipping`).
+    list_pos: Vec<u128>,
+    list_neg: Vec<u128>,
     /// Each contact's excess over µs·N per unit mass at α = 0, "+" and "−" sides, m/s².
     key_pos: Vec<f64>,
     key_neg: Vec<f64>,
@@ -191,29 +191,32 @@ pub fn pulley_stick_friction(
     apply(contacts, scratch, force, r, slipping, held)
 }
 
-/// A slip candidate: its excess per unit mass at α = 0 on one side, and its index.
-#[derive(Debug, Clone, Copy)]
-struct Candidate(f64, usize);
+/// A slip candidate as one integer that sorts worst first: the excess per unit mass at
+/// α = 0 on one side (`key`, larger is worse) in the high 64 bits, mapped to an unsigned
+/// order and inverted, then the contact index (lower first on equal keys, as the
+/// one-at-a-time scan chose) in the low 64 bits.
+#[inline]
+fn sort_key(key: f64, index: usize) -> u128 {
+    let bits = key.to_bits();
+    // IEEE order as unsigned: flip all bits of negatives, the sign bit of the others.
+    let ordered = if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | (1 << 63)
+    };
+    (u128::from(!ordered) << 64) | index as u128
+}
 
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other).is_eq()
+/// The contacts `k` with `include[k]`, as [`sort_key`]s of `key[k]` in ascending order
+/// (worst first), into `out`. Integer keys: a float comparator sorts several times slower.
+fn sort_worst_first(key: &[f64], include: &[bool], out: &mut Vec<u128>) {
+    out.clear();
+    for (k, (&x, &inc)) in key.iter().zip(include).enumerate() {
+        if inc {
+            out.push(sort_key(x, k));
+        }
     }
-}
-impl Eq for Candidate {}
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Candidate {
-    /// Largest key first; on equal keys the lowest index (the first violator found, as the
-    /// one-at-a-time scan chose).
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0
-            .total_cmp(&other.0)
-            .then_with(|| other.1.cmp(&self.1))
-    }
+    out.sort_unstable();
 }
 
 /// The slip loop of thesis figure 4.9 for a pulley that moves freely under `known_torque`
@@ -225,10 +228,11 @@ impl Ord for Candidate {
 /// A sticking node's stick force is f_k = free_k − m_k·r·α, so its excess over the static
 /// limit per unit node mass is A_k − r·α on the "+" side (f > 0) and B_k + r·α on the "−"
 /// side, with A_k = (free_k − µs·N_k)/m_k and B_k = (−free_k − µs·N_k)/m_k fixed for the
-/// step. The order of the candidates on each side therefore does not depend on α: two
-/// heaps keyed by A and B give the worst violator at any α from their two tops, and a
+/// step. The order of the candidates on each side therefore does not depend on α: the two
+/// lists sorted by A and by B give the worst violator at any α from their two heads, and a
 /// release updates α in O(1). The loop is the one-at-a-time rule itself, at
-/// O(n_c + n_slip·log n_c) instead of O(n_c·n_slip) (issue 11). The worst violator is the
+/// O(n_c·log n_c) at worst (one sort per side) instead of O(n_c·n_slip) (issue 11), and
+/// O(n_c) when the slip is on one side (the waves below). The worst violator is the
 /// one with the largest excess per unit mass (the largest slip acceleration it would need);
 /// with equal node masses on the pulley (every belt without material on it there) that is
 /// the largest excess, exactly as before.
@@ -251,7 +255,7 @@ fn release_slipping(
     let alpha = |torque: f64, a_sum: f64, m_sum: f64| {
         (torque + r * a_sum) / (pulley.inertia + r * r * m_sum)
     };
-    // The common case: nothing slips at the first solve (one O(n_c) pass, no heaps).
+    // The common case: nothing slips at the first solve (one O(n_c) pass, no lists).
     let alpha0 = alpha(known_torque, a_sum, m_sum);
     let mut any = false;
     for k in 0..nc {
@@ -277,16 +281,21 @@ fn release_slipping(
     // on that side, and stays ahead of every node of the other side while it is released
     // (its excess grows as α moves away, the other side's shrink). So releasing that whole
     // prefix in one O(n_c) pass gives exactly the states of the one-at-a-time rule. A slip
-    // arc, a sliding capstan or a settling belt is one or two waves; what remains after
-    // WAVES goes to the heaps.
-    const WAVES: usize = 2;
-    for _ in 0..WAVES {
+    // arc, a sliding capstan or a brake is one or two waves (more when releases cascade);
+    // slip on both sides (a loop settling on its pulleys stretches away from them both
+    // ways) releases few per wave, and once a wave takes less than half of the violators
+    // the rest goes to the sorted lists.
+    const MAX_WAVES: usize = 8;
+    for _ in 0..MAX_WAVES {
         let ra = r * alpha(torque, a_sum, m_sum);
         let (mut ep, mut en) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut violators = 0usize;
         for k in 0..nc {
             if scratch.sticking[k] {
-                ep = ep.max(scratch.key_pos[k] - ra);
-                en = en.max(scratch.key_neg[k] + ra);
+                let (p, q) = (scratch.key_pos[k] - ra, scratch.key_neg[k] + ra);
+                ep = ep.max(p);
+                en = en.max(q);
+                violators += usize::from(p > 0.0 || q > 0.0);
             }
         }
         if !(ep > 0.0 || en > 0.0) {
@@ -300,6 +309,7 @@ fn release_slipping(
             (&scratch.key_neg, ra, en, ep, -1.0)
         };
         let threshold = other.max(0.0);
+        let mut released = 0usize;
         for k in 0..nc {
             if !scratch.sticking[k] {
                 continue;
@@ -313,44 +323,48 @@ fn release_slipping(
                 torque += r * fk;
                 a_sum -= scratch.free[k];
                 m_sum -= mass[contacts.node[k]];
-                slipping += 1;
+                released += 1;
             }
         }
-    }
-    let mut pos = std::mem::take(&mut scratch.heap_pos);
-    let mut neg = std::mem::take(&mut scratch.heap_neg);
-    pos.clear();
-    neg.clear();
-    for k in 0..nc {
-        if scratch.sticking[k] {
-            pos.push(Candidate(scratch.key_pos[k], k));
-            neg.push(Candidate(scratch.key_neg[k], k));
+        slipping += released;
+        if 2 * released < violators {
+            break;
         }
     }
-    let mut pos = std::collections::BinaryHeap::from(pos);
-    let mut neg = std::collections::BinaryHeap::from(neg);
+    let mut pos = std::mem::take(&mut scratch.list_pos);
+    let mut neg = std::mem::take(&mut scratch.list_neg);
+    // Each side in its fixed order, worst first (ties: lowest index first, as the scan did).
+    sort_worst_first(&scratch.key_pos, &scratch.sticking, &mut pos);
+    sort_worst_first(&scratch.key_neg, &scratch.sticking, &mut neg);
+    let key_index = |c: u128| (c as u64) as usize;
+    let (mut i, mut j) = (0, 0);
     loop {
         let ra = r * alpha(torque, a_sum, m_sum);
-        // Drop released nodes from the tops (each was released through the other heap).
-        while pos.peek().is_some_and(|c| !scratch.sticking[c.1]) {
-            pos.pop();
+        // Skip released nodes (each was released through the other side's list).
+        while i < pos.len() && !scratch.sticking[key_index(pos[i])] {
+            i += 1;
         }
-        while neg.peek().is_some_and(|c| !scratch.sticking[c.1]) {
-            neg.pop();
+        while j < neg.len() && !scratch.sticking[key_index(neg[j])] {
+            j += 1;
         }
-        let ep = pos.peek().map_or(f64::NEG_INFINITY, |c| c.0 - ra);
-        let en = neg.peek().map_or(f64::NEG_INFINITY, |c| c.0 + ra);
+        let ep = pos
+            .get(i)
+            .map_or(f64::NEG_INFINITY, |&c| scratch.key_pos[key_index(c)] - ra);
+        let en = neg
+            .get(j)
+            .map_or(f64::NEG_INFINITY, |&c| scratch.key_neg[key_index(c)] + ra);
         // In mass-scaled units, m_k·(excess) > 0 exactly when the node violates.
         let (k, sign) = if ep >= en && ep > 0.0 {
-            (pos.pop().map(|c| c.1), 1.0)
+            i += 1;
+            (key_index(pos[i - 1]), 1.0)
         } else if en > 0.0 {
-            (neg.pop().map(|c| c.1), -1.0)
+            j += 1;
+            (key_index(neg[j - 1]), -1.0)
         } else {
             break;
         };
-        let Some(k) = k else { break };
         let m = mass[contacts.node[k]];
-        // The side's heap found the violation (f = free − m·r·α beyond ±µs·N); it slips
+        // The side's list found the violation (f = free − m·r·α beyond ±µs·N); it slips
         // with µk·N against it.
         let fk = sign * pulley.mu_kinetic * contacts.normal_force[k];
         scratch.force[k] = fk;
@@ -360,8 +374,8 @@ fn release_slipping(
         m_sum -= m;
         slipping += 1;
     }
-    scratch.heap_pos = pos.into_vec();
-    scratch.heap_neg = neg.into_vec();
+    scratch.list_pos = pos;
+    scratch.list_neg = neg;
     finish(contacts, mass, scratch, r, |a, m| alpha(torque, a, m));
     slipping
 }
