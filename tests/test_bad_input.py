@@ -111,7 +111,7 @@ def test_scene_without_pulleys():
 
 
 # --- every rule, from every form of input --------------------------------------------------
-# A scene is checked by one set of rules in the engine (rust/src/scene.rs, model.rs), and
+# A scene is checked by one set of rules in the engine (rust/src/scene/, model.rs), and
 # reaches it in three forms: dataclasses (beltrs.Simulation), a plain dict (the engine's own
 # reader) and a TOML file (beltrs.load_scene). Each test below goes through all three.
 

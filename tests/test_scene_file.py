@@ -13,9 +13,8 @@ from hypothesis import strategies as st
 
 import beltrs
 from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
-                    StartCurve, Takeup)
+                    Takeup)
 from beltrs import scene_file
-from beltrs.scene import unknown_key_message
 from beltrs.scenes import hustrulid_loop
 
 
@@ -113,7 +112,8 @@ finite = st.floats(allow_nan=False, allow_infinity=False)
 @given(
     values=st.lists(st.one_of(finite, st.just(math.inf), st.just(-math.inf), st.just(-0.0)), min_size=7, max_size=7),
     name=st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=20),
-    elements=st.one_of(st.none(), st.integers(min_value=-(2**63), max_value=2**63 - 1)),
+    # A count: negative counts are refused when read (see test_negative_count_is_refused_when_read).
+    elements=st.one_of(st.none(), st.integers(min_value=0, max_value=2**63 - 1)),
     table=st.lists(finite, min_size=1, max_size=6),
 )
 def test_any_values_round_trip_exactly(values, name, elements, table):
@@ -142,6 +142,13 @@ def test_any_values_round_trip_exactly(values, name, elements, table):
         ),
     ):
         assert repr(x) == repr(y)
+
+
+def test_negative_count_is_refused_when_read():
+    with pytest.raises(SceneError, match=r"belt\.elements = -1: expected a whole number ≥ 0"):
+        Scene(belt=Belt(elements=-1)).to_toml()
+    with pytest.raises(SceneError, match=r"<string>: belt\.elements = -1: expected a whole number ≥ 0"):
+        Scene.from_toml("[belt]\nelements = -1\n")
 
 
 def test_nan_round_trips():
@@ -250,7 +257,14 @@ def test_saving_a_wrong_type_is_refused_and_leaves_no_file(tmp_path):
     assert os.listdir(tmp_path) == ["s.toml"] and beltrs.load_scene(path) == everything()
 
 
-# --- the engine's dict reader gives the same messages ----------------------------------
+# --- every form is read by the engine's one schema reader --------------------------------
+def unknown_key_message(path: str, key: str, known: list) -> str:
+    """The message expected for an unknown key, with difflib's suggestion."""
+    known = sorted(set(known))
+    close = difflib.get_close_matches(key, known, n=1)
+    hint = f", did you mean {close[0]!r}?" if close else ""
+    return f"{path} = {key!r}: unknown key{hint} (known keys here: {', '.join(known)})"
+
 def engine_error(d) -> str:
     with pytest.raises(SceneError) as err:
         beltrs._beltrs.Simulation(d)
@@ -390,35 +404,38 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         elif line.startswith("| `") and title is not None:
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             sections[title][cells[0].strip("`")] = cells[1:]
+    # The keys and defaults are the engine's schema (rust/src/scene), the one source of both.
+    engine = beltrs._beltrs.scene_defaults()
     tables = {
-        "Root": (Scene, {"gravity"}),
-        "`[belt]`": (Belt, None),
-        "`[[pulleys]]`": (Pulley, None),
-        "`friction`": (Friction, None),
-        "`takeup`": (Takeup, None),
-        "`drive`": (Drive, None),
-        "`start_curve`": (StartCurve, None),
-        "`brake`": (Brake, None),
-        "`[[idlers]]`": (Idler, None),
-        "`[[loads]]`": (Load, None),
-        "`[solver]`": (Solver, None),
-        "`[recording]`": (Recording, None),
+        "Root": ("scene", {"gravity"}),
+        "`[belt]`": ("belt", None),
+        "`[[pulleys]]`": ("pulley", None),
+        "`friction`": ("friction", None),
+        "`takeup`": ("takeup", None),
+        "`drive`": ("drive", None),
+        "`start_curve`": ("start_curve", None),
+        "`brake`": ("brake", None),
+        "`[[idlers]]`": ("idler", None),
+        "`[[loads]]`": ("load", None),
+        "`[solver]`": ("solver", None),
+        "`[recording]`": ("recording", None),
     }
+    assert set(engine) == {t for t, _ in tables.values()}
     assert len(sections) == len(tables), list(sections)
-    for prefix, (cls, only) in tables.items():
+    for prefix, (table, only) in tables.items():
         rows = next(rows for t, rows in sections.items() if t.startswith(prefix))
-        fields = {f.name for f in dataclasses.fields(cls)} if only is None else only
+        fields = set(engine[table]) if only is None else only
         assert set(rows) == fields, (prefix, set(rows) ^ fields)
         for key, (unit, default, rule) in rows.items():
             where = f"{prefix} {key}"
             assert unit and default and len(rule) > 3, where
-            value = scene_file.field_default(cls, key)
-            if dataclasses.is_dataclass(value) or value is None and unit == "table":
+            value = engine[table][key]
+            if isinstance(value, dict) or value is None and unit == "table":
                 assert default == "—" and unit == "table", where  # a sub-table, absent by default
                 continue
             documented = _doc_default(default)
-            if isinstance(value, tuple):
-                documented = tuple(documented)
+            if isinstance(value, list):
+                value, documented = tuple(value), tuple(documented)
             assert (
                 documented == value
                 and type(documented) is type(value)

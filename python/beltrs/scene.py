@@ -8,6 +8,11 @@ that form are errors, never ignored. ``Scene.from_dict()`` reads that form back 
 :class:`beltrs.SceneError`), and ``Scene.save()`` / :func:`beltrs.load_scene` write and
 read the same structure as a TOML scene file (``docs/scene-format.md``).
 
+There is one schema, the engine's (``rust/src/scene``): the defaults of these dataclasses
+are the engine's own (``beltrs._beltrs.scene_defaults()``), their fields must be exactly
+the engine's keys (checked when this module is imported), and every key and type is
+checked by the engine's reader, whichever form a scene comes in.
+
 Constructing any of these classes normalises what it is given, so that a scene built in
 Python and the same scene read from a file compare equal: integers and NumPy scalars in
 float fields become ``float``, and sequences (lists, NumPy arrays) in sequence fields
@@ -18,15 +23,13 @@ the scene is compiled or saved.
 from __future__ import annotations
 
 import collections.abc
-import difflib
-import math
 import numbers
 import os
 import typing
-from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass
-from typing import Any, Mapping, Optional, Sequence, Union
+from dataclasses import MISSING, dataclass, field, fields, is_dataclass
+from typing import Any, Callable, Mapping, Optional, Sequence, Union
 
-from ._beltrs import SceneError
+from ._beltrs import check_scene, check_scene_table, scene_defaults, unknown_key_rule
 
 __all__ = [
     "Belt",
@@ -44,8 +47,58 @@ __all__ = [
 ]
 
 
+#: The engine's defaults of every table of the scene format (one dict per table).
+ENGINE_DEFAULTS: dict[str, dict[str, Any]] = scene_defaults()
+
+
+#: Deepest nesting :meth:`_Table.to_dict` follows (the format itself is 5 levels deep);
+#: anything deeper is handed to the engine as it is, which refuses it by name.
+_MAX_DEPTH = 16
+
+
+def _engine_table(table: str) -> Callable[[type], type]:
+    """Class decorator, applied before ``@dataclass``: give each annotated field the
+    engine's default for key ``table``.``name``, and refuse (at import) a class whose fields
+    are not exactly the engine's keys."""
+
+    def apply(cls: type) -> type:
+        defaults = ENGINE_DEFAULTS[table]
+        names = list(cls.__dict__.get("__annotations__", {}))
+        if set(names) != set(defaults):
+            missing, extra = sorted(set(defaults) - set(names)), sorted(set(names) - set(defaults))
+            raise ImportError(
+                f"beltrs.{cls.__name__} does not match the engine's {table!r} table: "
+                f"declare {missing}, remove {extra} (see 'Adding a scene field' in docs/scene-format.md)"
+            )
+        hints = typing.get_type_hints(cls)
+        for name in names:
+            value, tp = defaults[name], hints[name]
+            if typing.get_origin(tp) is list:
+                setattr(cls, name, field(default_factory=list))
+            elif isinstance(value, dict):
+                setattr(cls, name, field(default_factory=tp))  # a sub-table present by default
+            elif isinstance(value, list):
+                setattr(cls, name, tuple(value))
+            else:
+                setattr(cls, name, value)
+        cls._engine_table = table  # type: ignore[attr-defined]
+        return cls
+
+    return apply
+
+
+class _Table:
+    """Base of the scene dataclasses: the plain-data form."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plain-data form the engine reads: dicts, lists and values as they are (a
+        value of the wrong type is passed on for the engine to name)."""
+        return _plain(self, 0)
+
+
 @dataclass
-class Friction:
+@_engine_table("friction")
+class Friction(_Table):
     """Belt friction on a pulley or idler (stick-force model, thesis eq. 4.76-4.94).
 
     Attributes:
@@ -57,20 +110,17 @@ class Friction:
             saying so.
     """
 
-    static: float = 0.0
-    kinetic: Optional[float] = None
-    model: str = "stick_force"
+    static: float
+    kinetic: Optional[float]
+    model: str
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        # kinetic None means "equal to static"; the engine applies that default itself.
-        return {"model": self.model, "static": self.static, "kinetic": self.kinetic}
-
 
 @dataclass
-class Takeup:
+@_engine_table("takeup")
+class Takeup(_Table):
     """Gravity takeup: the pulley translates on a line (thesis eq. 4.63).
 
     Attributes:
@@ -81,21 +131,13 @@ class Takeup:
         travel_max: highest travel, m (>= 0). Default +inf.
     """
 
-    counterweight: float = 0.0
-    direction: tuple[float, float] = (0.0, -1.0)
-    travel_min: float = -math.inf
-    travel_max: float = math.inf
+    counterweight: float
+    direction: tuple[float, float]
+    travel_min: float
+    travel_max: float
 
     def __post_init__(self) -> None:
         _normalise(self)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "counterweight": self.counterweight,
-            "direction": list(self.direction),
-            "travel_min": self.travel_min,
-            "travel_max": self.travel_max,
-        }
 
 
 #: Shapes of a starting curve (:class:`StartCurve`).
@@ -103,7 +145,8 @@ START_SHAPES = ("harrison", "nordell", "cubic", "linear")
 
 
 @dataclass
-class StartCurve:
+@_engine_table("start_curve")
+class StartCurve(_Table):
     """Starting curve of a speed-controlled drive (Guo & Wang 2020 §4; ``docs/drives.md``):
     the belt speed at the drive pulley surface against time.
 
@@ -130,27 +173,16 @@ class StartCurve:
             Default None: ``prestart``/2. Only with ``prestart`` > 0.
     """
 
-    shape: str = "harrison"
-    speed: Optional[float] = None
-    ramp: Optional[float] = None
-    start: float = 0.0
-    prestart: float = 0.0
-    creep_speed: Optional[float] = None
-    creep_ramp: Optional[float] = None
+    shape: str
+    speed: Optional[float]
+    ramp: Optional[float]
+    start: float
+    prestart: float
+    creep_speed: Optional[float]
+    creep_ramp: Optional[float]
 
     def __post_init__(self) -> None:
         _normalise(self)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "shape": self.shape,
-            "speed": self.speed,
-            "ramp": self.ramp,
-            "start": self.start,
-            "prestart": self.prestart,
-            "creep_speed": self.creep_speed,
-            "creep_ramp": self.creep_ramp,
-        }
 
     def evaluate(self, t: Any) -> tuple[Any, Any]:
         """Belt speed (m/s) and acceleration (m/s^2) at time(s) ``t`` (s), computed by the
@@ -185,7 +217,8 @@ class StartCurve:
 
 
 @dataclass
-class Drive:
+@_engine_table("drive")
+class Drive(_Table):
     """A drive on a pulley, torque-controlled or speed-controlled.
 
     Torque-controlled (thesis eq. 4.66): T(t, w) = f(t) * g(w) - viscous * w.
@@ -213,14 +246,14 @@ class Drive:
             torque), N*m, > 0. Default inf (no limit). Only with ``start_curve``.
     """
 
-    time: Sequence[float] = (0.0,)
-    torque: Sequence[float] = (0.0,)
-    speed: Optional[Sequence[float]] = None
-    speed_factor: Optional[Sequence[float]] = None
-    viscous: float = 0.0
-    inertia: float = 0.0
-    start_curve: Optional[StartCurve] = None
-    max_torque: float = math.inf
+    time: Sequence[float]
+    torque: Sequence[float]
+    speed: Optional[Sequence[float]]
+    speed_factor: Optional[Sequence[float]]
+    viscous: float
+    inertia: float
+    start_curve: Optional[StartCurve]
+    max_torque: float
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -246,23 +279,10 @@ class Drive:
             values = [torque, torque, 0.0]
         return cls(time=times, torque=values, **kw)
 
-    def to_dict(self) -> dict[str, Any]:
-        d: dict[str, Any] = {
-            "time": [float(t) for t in self.time],
-            "torque": [float(t) for t in self.torque],
-            "viscous": self.viscous,
-            "inertia": self.inertia,
-            "start_curve": None if self.start_curve is None else self.start_curve.to_dict(),
-            "max_torque": self.max_torque,
-        }
-        if self.speed is not None or self.speed_factor is not None:
-            d["speed"] = None if self.speed is None else [float(w) for w in self.speed]
-            d["speed_factor"] = None if self.speed_factor is None else [float(g) for g in self.speed_factor]
-        return d
-
 
 @dataclass
-class Brake:
+@_engine_table("brake")
+class Brake(_Table):
     """Coulomb brake that holds the pulley at rest up to its capacity.
 
     Attributes:
@@ -270,18 +290,16 @@ class Brake:
         capacity: braking/holding torque capacity, N*m, >= 0. Default [0].
     """
 
-    time: Sequence[float] = (0.0,)
-    capacity: Sequence[float] = (0.0,)
+    time: Sequence[float]
+    capacity: Sequence[float]
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        return {"time": [float(t) for t in self.time], "capacity": [float(c) for c in self.capacity]}
-
 
 @dataclass
-class Pulley:
+@_engine_table("pulley")
+class Pulley(_Table):
     """A pulley the belt wraps (thesis §4.2).
 
     Attributes:
@@ -305,54 +323,37 @@ class Pulley:
             None: 0.2 (``DEFAULT_CONTACT_DAMPING_RATIO``) unless ``contact_damping`` is
             given. Undamped contact (0) with friction lets the belt bounce off the pulley
             and gets a :class:`beltrs.UndampedContactWarning` (docs/belt-drives.md).
-        bearing_damping: linear viscous drag in the bearings, N*m*s/rad, >= 0: a torque
-            -b*omega on the pulley (a free pulley spins down as omega0*exp(-b*t/I); useful
-            for coasting stops). Default 0 (no ``bearing_drag`` stage is compiled).
+        bearing_damping: linear viscous drag of the bearings, N*m*s/rad, >= 0: torque
+            -b*omega on the pulley (a free pulley spins down as omega0*exp(-b*t/I)), e.g.
+            for coasting stops. Default 0 (no ``bearing_drag`` stage).
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
         name: label for messages and results; unique unless empty. Default "".
     """
 
-    center: tuple[float, float] = (0.0, 0.0)
-    radius: float = 0.5
-    mass: float = 100.0
-    inertia: Optional[float] = None
-    wrap: str = "ccw"
-    friction: Optional[Friction] = None
-    contact_stiffness: float = 1e9
-    contact_damping: Optional[float] = None
-    contact_damping_ratio: Optional[float] = None
-    bearing_damping: float = 0.0
-    takeup: Optional[Takeup] = None
-    drive: Optional[Drive] = None
-    brake: Optional[Brake] = None
-    name: str = ""
+    center: tuple[float, float]
+    radius: float
+    mass: float
+    inertia: Optional[float]
+    wrap: str
+    friction: Optional[Friction]
+    contact_stiffness: float
+    contact_damping: Optional[float]
+    contact_damping_ratio: Optional[float]
+    bearing_damping: float
+    takeup: Optional[Takeup]
+    drive: Optional[Drive]
+    brake: Optional[Brake]
+    name: str
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "name": self.name,
-            "center": [float(c) for c in self.center],
-            "radius": self.radius,
-            "mass": self.mass,
-            "inertia": self.inertia,
-            "wrap": self.wrap,
-            "friction": None if self.friction is None else self.friction.to_dict(),
-            "contact_stiffness": self.contact_stiffness,
-            "contact_damping": self.contact_damping,
-            "contact_damping_ratio": self.contact_damping_ratio,
-            "bearing_damping": self.bearing_damping,
-            "takeup": None if self.takeup is None else self.takeup.to_dict(),
-            "drive": None if self.drive is None else self.drive.to_dict(),
-            "brake": None if self.brake is None else self.brake.to_dict(),
-        }
-
 
 @dataclass
-class Idler:
+@_engine_table("idler")
+class Idler(_Table):
     """An idler roll touching the belt centre line (thesis eq. 4.95-4.117).
 
     Attributes:
@@ -376,35 +377,23 @@ class Idler:
             load in the resistance limit (the roll's inertia is ``inertia``). Default 0.
     """
 
-    center: tuple[float, float] = (0.0, 0.0)
-    radius: float = 0.0635
-    inertia: float = 0.01
-    contact_stiffness: float = 1e8
-    contact_damping: Optional[float] = None
-    contact_damping_ratio: Optional[float] = None
-    friction: Optional[Friction] = None
-    resistance: float = 0.0
-    rotating_mass: float = 0.0
+    center: tuple[float, float]
+    radius: float
+    inertia: float
+    contact_stiffness: float
+    contact_damping: Optional[float]
+    contact_damping_ratio: Optional[float]
+    friction: Optional[Friction]
+    resistance: float
+    rotating_mass: float
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "center": [float(c) for c in self.center],
-            "radius": self.radius,
-            "inertia": self.inertia,
-            "contact_stiffness": self.contact_stiffness,
-            "contact_damping": self.contact_damping,
-            "contact_damping_ratio": self.contact_damping_ratio,
-            "friction": None if self.friction is None else self.friction.to_dict(),
-            "resistance": self.resistance,
-            "rotating_mass": self.rotating_mass,
-        }
-
 
 @dataclass
-class Load:
+@_engine_table("load")
+class Load(_Table):
     """Bulk material on the belt between a loading and a discharge point (docs/loads.md).
 
     The material moves with the belt: each step the belt points nearest ``start`` and
@@ -424,23 +413,17 @@ class Load:
             do, the scene is refused as ambiguous.
     """
 
-    mass_per_length: float = 0.0
-    start: tuple[float, float] = (0.0, 0.0)
-    end: tuple[float, float] = (0.0, 0.0)
+    mass_per_length: float
+    start: tuple[float, float]
+    end: tuple[float, float]
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "mass_per_length": self.mass_per_length,
-            "start": [float(c) for c in self.start],
-            "end": [float(c) for c in self.end],
-        }
-
 
 @dataclass
-class Belt:
+@_engine_table("belt")
+class Belt(_Table):
     """Belt properties (thesis §4.1).
 
     Attributes:
@@ -463,16 +446,16 @@ class Belt:
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
     """
 
-    axial_stiffness: float = 7.62e6
-    mass_per_length: float = 100.0
-    bending_stiffness: float = 0.0
-    damping_ratio: float = 0.0
-    length: Optional[float] = None
-    elements: Optional[int] = None
-    max_element_angle: float = math.pi / 6
-    tension_only: bool = False
-    formulation: str = "node_kelvin_voigt"
-    max_placement_strain: float = 0.1
+    axial_stiffness: float
+    mass_per_length: float
+    bending_stiffness: float
+    damping_ratio: float
+    length: Optional[float]
+    elements: Optional[int]
+    max_element_angle: float
+    tension_only: bool
+    formulation: str
+    max_placement_strain: float
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -489,12 +472,10 @@ class Belt:
             **kw,
         )
 
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
-
 
 @dataclass
-class Solver:
+@_engine_table("solver")
+class Solver(_Table):
     """Time stepping.
 
     Attributes:
@@ -504,23 +485,21 @@ class Solver:
             (the thesis ran at half its limit).
     """
 
-    time_step: Optional[float] = None
-    time_step_fraction: float = 0.5
+    time_step: Optional[float]
+    time_step_fraction: float
 
     def __post_init__(self) -> None:
         _normalise(self)
 
-    def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
-
 
 #: Optional large arrays a run can record (``Recording.channels``); every other array of
 #: :class:`beltrs.Result` is always recorded.
-CHANNELS = ("tension", "node_position", "node_velocity")
+CHANNELS = tuple(ENGINE_DEFAULTS["recording"]["channels"])
 
 
 @dataclass
-class Recording:
+@_engine_table("recording")
+class Recording(_Table):
     """How a scene is run and what is recorded (the ``[recording]`` table of a scene file,
     used by ``beltrs run``; :meth:`beltrs.Simulation.run` takes the same settings as
     arguments, see :meth:`run_kwargs`).
@@ -541,25 +520,15 @@ class Recording:
             (alone it would have no effect, and is refused). Default False.
     """
 
-    duration: float = 1.0
-    interval: Optional[float] = None
-    every: Optional[int] = None
-    channels: tuple[str, ...] = CHANNELS
-    stabilise: bool = True
-    stabilise_friction: bool = False
+    duration: float
+    interval: Optional[float]
+    every: Optional[int]
+    channels: tuple[str, ...]
+    stabilise: bool
+    stabilise_friction: bool
 
     def __post_init__(self) -> None:
         _normalise(self)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "duration": self.duration,
-            "interval": self.interval,
-            "every": self.every,
-            "channels": list(self.channels),
-            "stabilise": self.stabilise,
-            "stabilise_friction": self.stabilise_friction,
-        }
 
     def run_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :meth:`beltrs.Simulation.run` (all but ``duration``)."""
@@ -572,7 +541,8 @@ class Recording:
 
 
 @dataclass
-class Scene:
+@_engine_table("scene")
+class Scene(_Table):
     """A whole scene. Pulleys are listed in the order the belt meets them.
 
     Attributes:
@@ -585,28 +555,16 @@ class Scene:
         recording: how ``beltrs run`` runs the scene and what it records.
     """
 
-    belt: Belt = field(default_factory=Belt)
-    pulleys: list[Pulley] = field(default_factory=list)
-    idlers: list[Idler] = field(default_factory=list)
-    loads: list[Load] = field(default_factory=list)
-    gravity: float = 9.81
-    solver: Solver = field(default_factory=Solver)
-    recording: Recording = field(default_factory=Recording)
+    belt: Belt
+    pulleys: list[Pulley]
+    idlers: list[Idler]
+    loads: list[Load]
+    gravity: float
+    solver: Solver
+    recording: Recording
 
     def __post_init__(self) -> None:
         _normalise(self)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The plain-data form the engine reads (``Scene.from_dict`` reads it back)."""
-        return {
-            "belt": self.belt.to_dict(),
-            "pulleys": [p.to_dict() for p in self.pulleys],
-            "idlers": [d.to_dict() for d in self.idlers],
-            "loads": [ld.to_dict() for ld in self.loads],
-            "gravity": self.gravity,
-            "solver": self.solver.to_dict(),
-            "recording": self.recording.to_dict(),
-        }
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> "Scene":
@@ -619,7 +577,8 @@ class Scene:
                 mean" suggestion) or a value of the wrong type (naming the field, the
                 value and the expected type).
         """
-        return _read_dataclass(cls, data, "")
+        check_scene(data)
+        return _from_dict(cls, data)
 
     def to_toml(self) -> str:
         """This scene as the text of a TOML scene file (``docs/scene-format.md``)."""
@@ -654,7 +613,7 @@ class Scene:
         raise KeyError(f"no pulley named {name!r} (names: {[p.name for p in self.pulleys]})")
 
 
-# --- strict reading and normalisation ---------------------------------------------------
+# --- reading and normalisation ------------------------------------------------------
 _HINTS: dict[type, dict[str, Any]] = {}
 
 
@@ -668,84 +627,60 @@ def _hints(cls: type) -> dict[str, Any]:
     return h
 
 
-def _join(path: str, key: str) -> str:
-    return key if not path else f"{path}.{key}"
-
-
-def _type_error(path: str, value: Any, expected: str) -> SceneError:
-    return SceneError(f"{path or 'scene'} = {value!r}: expected {expected}")
-
-
-def unknown_key_message(path: str, key: Any, known: Sequence[str]) -> str:
-    """``path = 'key': unknown key, did you mean 'x'? (known keys here: ...)``; the same
-    text (and the same suggestion, difflib's closest match) as the engine's dict reader."""
-    known = sorted(set(known))
-    close = difflib.get_close_matches(str(key), known, n=1)
-    hint = f", did you mean {close[0]!r}?" if close else ""
-    return f"{path} = {key!r}: unknown key{hint} (known keys here: {', '.join(known)})"
+def _plain(value: Any, depth: int) -> Any:
+    if depth > _MAX_DEPTH:
+        return value
+    if is_dataclass(value) and not isinstance(value, type):
+        return {f.name: _plain(getattr(value, f.name), depth + 1) for f in fields(value)}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, depth + 1) for v in value]
+    return value
 
 
 def _is_sequence(value: Any) -> bool:
     return not isinstance(value, (str, bytes, Mapping)) and hasattr(value, "__iter__") and hasattr(value, "__len__")
 
 
-def _read_value(tp: Any, value: Any, path: str) -> Any:
-    """``value`` checked against the annotation ``tp`` and converted to its canonical form."""
+def _coerce(tp: Any, value: Any) -> Any:
+    """``value`` in the canonical form of annotation ``tp`` if it fits, else as given (the
+    engine names it when the scene is compiled or saved). Never raises."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin is Union:
-        inner = [a for a in args if a is not type(None)]
-        if value is None and len(inner) < len(args):
+        if value is None:
             return None
-        return _read_value(inner[0], value, path)
+        return _coerce(next(a for a in args if a is not type(None)), value)
     if tp is float:
-        if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise _type_error(path, value, "a number")
-        return float(value)
+        if type(value) is not float and isinstance(value, numbers.Real) and not isinstance(value, bool):
+            try:
+                return float(value)
+            except (OverflowError, ValueError, TypeError):
+                return value
+        return value
     if tp is int:
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-            raise _type_error(path, value, "a whole number")
-        return int(value)
-    if tp is bool:
-        if not isinstance(value, bool):
-            raise _type_error(path, value, "true or false")
+        if type(value) is not int and isinstance(value, numbers.Integral) and not isinstance(value, bool):
+            return int(value)
         return value
-    if tp is str:
-        if not isinstance(value, str):
-            raise _type_error(path, value, "a string")
-        return value
-    if origin is tuple and len(args) == 2 and args[1] is not Ellipsis:
-        if not _is_sequence(value) or len(value) != 2:
-            raise _type_error(path, value, "[x, y]")
-        return tuple(_read_value(float, v, f"{path}[{i}]") for i, v in enumerate(value))
     if origin in (tuple, collections.abc.Sequence) and args:
-        item = args[0]
-        what = "a list of strings" if item is str else "a list of numbers"
         if not _is_sequence(value):
-            raise _type_error(path, value, what)
-        return tuple(_read_value(item, v, f"{path}[{i}]") for i, v in enumerate(value))
+            return value
+        try:
+            items = list(value)
+        except Exception:  # a broken sequence: the engine names it
+            return value
+        item = args[0]
+        return tuple(_coerce(item, v) for v in items)
     if origin is list and args and is_dataclass(args[0]):
-        if not isinstance(value, (list, tuple)):
-            raise _type_error(path, value, "a list of tables")
-        items = [_read_dataclass(args[0], v, f"{path}[{i}]") for i, v in enumerate(value)]
+        if not _is_sequence(value):
+            return value
+        items = [_coerce(args[0], v) for v in value]
         if isinstance(value, list) and all(a is b for a, b in zip(items, value)):
             return value  # already a list of scene objects: keep the caller's list
         return items
     if is_dataclass(tp):
-        return _read_dataclass(tp, value, path)
-    raise TypeError(f"{path}: no reader for annotation {tp!r}")  # a bug in this module
-
-
-def _read_dataclass(cls: type, data: Any, path: str) -> Any:
-    if isinstance(data, cls):
-        return data
-    if not isinstance(data, Mapping):
-        raise _type_error(path, data, "a table")
-    hints = _hints(cls)
-    for key in data:
-        if key not in hints:
-            raise SceneError(unknown_key_message(_join(path, str(key)), key, list(hints)))
-    kwargs = {name: _read_value(tp, data[name], _join(path, name)) for name, tp in hints.items() if name in data}
-    return cls(**kwargs)
+        if isinstance(value, Mapping) and all(isinstance(k, str) for k in value) and set(value) <= set(_hints(tp)):
+            return tp(**value)
+        return value
+    return value
 
 
 def _normalise(obj: Any) -> None:
@@ -753,16 +688,33 @@ def _normalise(obj: Any) -> None:
     module docstring); a value of the wrong type is left alone for the engine to report."""
     for name, tp in _hints(type(obj)).items():
         value = getattr(obj, name)
-        try:
-            new = _read_value(tp, value, name)
-        except SceneError:
-            continue
+        new = _coerce(tp, value)
         if new is not value:
             object.__setattr__(obj, name, new)
 
 
+def _from_dict(cls: type, data: Mapping[str, Any]) -> Any:
+    """``cls`` built from a dict form already checked by the engine."""
+    return cls(**{k: _coerce(tp, data[k]) for k, tp in _hints(cls).items() if k in data})
+
+
+def _read_dataclass(cls: type, data: Any, path: str) -> Any:
+    """``cls`` (a scene dataclass) read strictly from its dict form, messages naming paths
+    from ``path``: the engine checks keys and types (its table ``cls._engine_table``)."""
+    if isinstance(data, cls):
+        return data
+    check_scene_table(cls._engine_table, data, path)  # type: ignore[attr-defined]
+    return _from_dict(cls, data)
+
+
+def unknown_key_message(path: str, key: Any, known: Sequence[str]) -> str:
+    """``path = 'key': unknown key, did you mean 'x'? (known keys here: ...)``, with the
+    engine's suggestion (for tables read in Python, e.g. ``beltrs.conveyor``'s)."""
+    return f"{path} = {str(key)!r}: {unknown_key_rule(str(key), [str(k) for k in known])}"
+
+
 def field_default(cls: type, name: str) -> Any:
-    """The default value of field ``name`` of a scene dataclass."""
+    """The default value of field ``name`` of a scene dataclass (the engine's default)."""
     for f in fields(cls):
         if f.name == name:
             if f.default is not MISSING:

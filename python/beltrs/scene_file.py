@@ -1,5 +1,8 @@
 """TOML scene files: read with ``tomllib`` (Python >= 3.11, or the ``tomli`` package on
-3.9/3.10), written by a small writer for the scene structure (no dependency).
+3.9/3.10), written by a small writer for the scene structure (no dependency). Neither knows any key:
+the reader hands the parsed tables to :meth:`Scene.from_dict` (the engine's schema checks
+every key and type), and the writer walks the scene dataclasses, leaving out what equals
+the engine's default in compact tables.
 
 The file holds exactly ``Scene.to_dict()``: the tables ``[belt]``, ``[[pulleys]]`` (with
 ``[pulleys.friction]``, ``[pulleys.takeup]``, ``[pulleys.drive]``, ``[pulleys.brake]``),
@@ -68,6 +71,13 @@ def loads_scene(text: str, source: str = "<string>") -> Scene:
         data = toml.loads(text)
     except toml.TOMLDecodeError as err:
         raise SceneError(f"{source}: not valid TOML: {err}") from None
+    except RecursionError:
+        # The TOML reader recurses once per nested array or inline table; no scene key is
+        # nested more than a few levels.
+        raise SceneError(
+            f"{source}: an array or inline table nested deeper than Python's recursion limit: "
+            "no scene key is nested more than 5 levels"
+        ) from None
     try:
         return Scene.from_dict(data)
     except SceneError as err:

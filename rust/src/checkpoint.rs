@@ -1,10 +1,10 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; versions 1 to 3 are still read)
+//! # Format (version 4; older versions are refused, naming their version)
 //!
-//! All integers are little-endian; every `f64` is stored as its raw IEEE-754 bits
-//! (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
+//! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
+//! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
 //!
 //! | bytes | content |
 //! |---|---|
@@ -17,29 +17,20 @@
 //!
 //! The payload holds, in order: the engine version that wrote it (a string); the scene
 //! (every field of [`Scene`], so parameters changed during a run, e.g. a counterweight or a
-//! drive, are kept; a drive is tagged 1 when torque-controlled, 2 when speed-controlled, in
-//! which case its starting curve and torque limit follow its other fields, so files of
-//! torque drives are unchanged); the node count and the time step the model was compiled to (checked
+//! drive, are kept), as a byte string holding the serde form of the one scene schema
+//! ([`crate::scene`], the same keys as a scene file) in CBOR, whose floats keep every bit;
+//! the node count and the time step the model was compiled to (checked
 //! on load: the scene must compile to the same model); and the [`State`]: time, step,
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
-//! and the drive work. Strings and arrays are a `u64` length followed by the items.
+//! the drive work, the node masses (belt and material) and each load's zone edges (start
+//! element, end element, start and end material coordinates). Strings, byte strings and
+//! arrays are a `u64` length followed by the items.
 //!
-//! Version 2 adds, to each idler, its running resistance and rotating mass (after its
-//! friction); to the scene, the loads (after the idlers: count, then mass per length,
-//! start x, y, end x, y of each); and to the state, after the drive work, the node masses
-//! (belt and material) and each load's zone edges (start element, end element, start and
-//! end material coordinates). A version-1 file reads as a scene without resistance or
-//! loads, whose node masses are the belt's.
-//!
-//! Version 3 writes each pulley's and idler's contact damping as two options (a tag byte 0/1,
-//! then the `f64` when 1): `contact_damping` (N·s/m) then `contact_damping_ratio`, in place
-//! of the one `f64`; and the belt's `max_placement_strain` after `tension_only`. Earlier
-//! files read as an absolute damping (their value, 0 for none: the run resumes unchanged)
-//! and a placement limit of 5 % (the fixed rule then).
-//!
-//! Version 4 adds, to each pulley, its bearing damping (after its contact damping); an
-//! earlier file reads as pulleys without bearing drag.
+//! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
+//! added the contact damping options and the belt's placement limit to them) by the scene
+//! schema's serde form, so that a new scene field needs no change here. Versions 1 to 3 are
+//! refused with their version number (re-run from the scene file).
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -51,12 +42,8 @@
 use crate::error::{BeltError, BeltResult};
 use crate::loads::LoadEdges;
 use crate::model::Model;
-use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, Formulation, FrictionModel, IdlerSpec, LoadSpec, PulleySpec,
-    Scene, SolverParams, Table, TakeupSpec, Wrap,
-};
+use crate::scene::Scene;
 use crate::simulation::Simulation;
-use crate::start_curve::{StartCurve, StartShape};
 use crate::state::{ContactWindow, State};
 use nalgebra::Vector2;
 use std::io::Write;
@@ -66,8 +53,10 @@ use std::path::Path;
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
 pub const FORMAT_VERSION: u32 = 4;
-/// Oldest version this build reads.
-pub const OLDEST_READ_VERSION: u32 = 1;
+/// Oldest version this build reads. Version 4 stores the scene in its serde form; the
+/// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
+/// with its version: re-run from the scene file).
+pub const OLDEST_READ_VERSION: u32 = 4;
 const HEADER_BYTES: usize = 24;
 const CHECKSUM_BYTES: usize = 4;
 
@@ -141,7 +130,7 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
     let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
     if !(OLDEST_READ_VERSION..=FORMAT_VERSION).contains(&version) {
         return Err(format!(
-            "format version {version}; this build of beltrs reads versions {OLDEST_READ_VERSION} to {FORMAT_VERSION}"
+            "format version {version}; this build of beltrs reads versions {OLDEST_READ_VERSION} to {FORMAT_VERSION} (a file of an older version was written by an older beltrs: re-run from the scene file)"
         ));
     }
     let payload_len = u64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
@@ -381,21 +370,18 @@ struct Writer {
 }
 
 impl Writer {
-    fn u8(&mut self, v: u8) {
-        self.buf.push(v);
-    }
     fn u64(&mut self, v: u64) {
         self.buf.extend_from_slice(&v.to_le_bytes());
     }
     fn f64(&mut self, v: f64) {
         self.u64(v.to_bits());
     }
-    fn bool(&mut self, v: bool) {
-        self.u8(v as u8);
-    }
     fn str(&mut self, s: &str) {
-        self.u64(s.len() as u64);
-        self.buf.extend_from_slice(s.as_bytes());
+        self.bytes(s.as_bytes());
+    }
+    fn bytes(&mut self, b: &[u8]) {
+        self.u64(b.len() as u64);
+        self.buf.extend_from_slice(b);
     }
     fn f64s(&mut self, v: &[f64]) {
         self.u64(v.len() as u64);
@@ -406,32 +392,6 @@ impl Writer {
         for p in v {
             self.f64(p.x);
             self.f64(p.y);
-        }
-    }
-    fn opt_f64(&mut self, v: Option<f64>) {
-        match v {
-            None => self.u8(0),
-            Some(x) => {
-                self.u8(1);
-                self.f64(x);
-            }
-        }
-    }
-    fn table(&mut self, t: &Table) {
-        self.f64s(&t.x);
-        self.f64s(&t.y);
-    }
-    fn friction(&mut self, f: &FrictionModel) {
-        match *f {
-            FrictionModel::None => self.u8(0),
-            FrictionModel::StickForce {
-                static_coefficient,
-                kinetic_coefficient,
-            } => {
-                self.u8(1);
-                self.f64(static_coefficient);
-                self.f64(kinetic_coefficient);
-            }
         }
     }
 }
@@ -457,9 +417,6 @@ impl<'a> Reader<'a> {
         self.pos += n;
         Ok(s)
     }
-    fn u8(&mut self, what: &str) -> Decoded<u8> {
-        Ok(self.take(1, what)?[0])
-    }
     fn u64(&mut self, what: &str) -> Decoded<u64> {
         Ok(u64::from_le_bytes(
             self.take(8, what)?.try_into().expect("8 bytes"),
@@ -471,13 +428,6 @@ impl<'a> Reader<'a> {
     }
     fn f64(&mut self, what: &str) -> Decoded<f64> {
         Ok(f64::from_bits(self.u64(what)?))
-    }
-    fn bool(&mut self, what: &str) -> Decoded<bool> {
-        match self.u8(what)? {
-            0 => Ok(false),
-            1 => Ok(true),
-            b => Err(format!("corrupt: {what} has flag byte {b}")),
-        }
     }
     /// A length prefix, checked against the bytes left before anything is allocated.
     fn len(&mut self, what: &str, item_bytes: usize) -> Decoded<usize> {
@@ -491,9 +441,12 @@ impl<'a> Reader<'a> {
         Ok(n)
     }
     fn str(&mut self, what: &str) -> Decoded<String> {
-        let n = self.len(what, 1)?;
-        let s = self.take(n, what)?;
+        let s = self.bytes(what)?;
         String::from_utf8(s.to_vec()).map_err(|_| format!("corrupt: {what} is not UTF-8"))
+    }
+    fn bytes(&mut self, what: &str) -> Decoded<&'a [u8]> {
+        let n = self.len(what, 1)?;
+        self.take(n, what)
     }
     fn f64s(&mut self, what: &str) -> Decoded<Vec<f64>> {
         let n = self.len(what, 8)?;
@@ -505,306 +458,20 @@ impl<'a> Reader<'a> {
             .map(|_| Ok(Vector2::new(self.f64(what)?, self.f64(what)?)))
             .collect()
     }
-    /// A body's (contact_damping, contact_damping_ratio): both optional from version 3; before,
-    /// an absolute damping (0 for none), kept as given so the run resumes unchanged.
-    fn contact_damping(&mut self, what: &str) -> Decoded<(Option<f64>, Option<f64>)> {
-        if self.version >= 3 {
-            Ok((self.opt_f64(what)?, self.opt_f64(what)?))
-        } else {
-            Ok((Some(self.f64(what)?), None))
-        }
-    }
-    fn opt_f64(&mut self, what: &str) -> Decoded<Option<f64>> {
-        Ok(if self.bool(what)? {
-            Some(self.f64(what)?)
-        } else {
-            None
-        })
-    }
-    fn table(&mut self, what: &str) -> Decoded<Table> {
-        Ok(Table {
-            x: self.f64s(what)?,
-            y: self.f64s(what)?,
-        })
-    }
-    fn friction(&mut self, what: &str) -> Decoded<FrictionModel> {
-        match self.u8(what)? {
-            0 => Ok(FrictionModel::None),
-            1 => Ok(FrictionModel::StickForce {
-                static_coefficient: self.f64(what)?,
-                kinetic_coefficient: self.f64(what)?,
-            }),
-            t => Err(format!("corrupt: {what} has model tag {t}")),
-        }
-    }
 }
 
+/// The scene: its serde form (the one scene schema, [`crate::scene`]) in CBOR, as a
+/// length-prefixed byte string. Floats keep every bit.
 fn write_scene(w: &mut Writer, s: &Scene) {
-    let b = &s.belt;
-    w.u8(match b.formulation {
-        Formulation::NodeKelvinVoigt => 0,
-    });
-    w.f64(b.axial_stiffness);
-    w.f64(b.mass_per_length);
-    w.f64(b.bending_stiffness);
-    w.f64(b.damping_ratio);
-    w.opt_f64(b.length);
-    match b.elements {
-        None => w.u8(0),
-        Some(n) => {
-            w.u8(1);
-            w.u64(n as u64);
-        }
-    }
-    w.f64(b.max_element_angle);
-    w.bool(b.tension_only);
-    w.f64(b.max_placement_strain);
-    w.u64(s.pulleys.len() as u64);
-    for p in &s.pulleys {
-        w.str(&p.name);
-        w.f64(p.center[0]);
-        w.f64(p.center[1]);
-        w.f64(p.radius);
-        w.f64(p.mass);
-        w.opt_f64(p.inertia);
-        w.u8(match p.wrap {
-            Wrap::CounterClockwise => 0,
-            Wrap::Clockwise => 1,
-        });
-        w.friction(&p.friction);
-        w.f64(p.contact_stiffness);
-        w.opt_f64(p.contact_damping);
-        w.opt_f64(p.contact_damping_ratio);
-        w.f64(p.bearing_damping);
-        match &p.takeup {
-            None => w.u8(0),
-            Some(t) => {
-                w.u8(1);
-                w.f64(t.direction[0]);
-                w.f64(t.direction[1]);
-                w.f64(t.counterweight);
-                w.f64(t.travel_min);
-                w.f64(t.travel_max);
-            }
-        }
-        match &p.drive {
-            None => w.u8(0),
-            Some(d) => {
-                w.u8(if d.start_curve.is_some() { 2 } else { 1 });
-                w.table(&d.torque);
-                w.table(&d.speed_factor);
-                w.f64(d.viscous);
-                w.f64(d.inertia);
-                if let Some(c) = &d.start_curve {
-                    w.u8(match c.shape {
-                        StartShape::Harrison => 0,
-                        StartShape::Nordell => 1,
-                        StartShape::Cubic => 2,
-                        StartShape::Linear => 3,
-                    });
-                    w.f64(c.speed);
-                    w.f64(c.ramp);
-                    w.f64(c.start);
-                    w.f64(c.prestart);
-                    w.opt_f64(c.creep_speed);
-                    w.opt_f64(c.creep_ramp);
-                    w.f64(d.max_torque);
-                }
-            }
-        }
-        match &p.brake {
-            None => w.u8(0),
-            Some(br) => {
-                w.u8(1);
-                w.table(&br.capacity);
-            }
-        }
-    }
-    w.u64(s.idlers.len() as u64);
-    for d in &s.idlers {
-        w.f64(d.center[0]);
-        w.f64(d.center[1]);
-        w.f64(d.radius);
-        w.f64(d.inertia);
-        w.f64(d.contact_stiffness);
-        w.opt_f64(d.contact_damping);
-        w.opt_f64(d.contact_damping_ratio);
-        w.friction(&d.friction);
-        w.f64(d.resistance);
-        w.f64(d.rotating_mass);
-    }
-    w.u64(s.loads.len() as u64);
-    for l in &s.loads {
-        w.f64(l.mass_per_length);
-        w.f64(l.start[0]);
-        w.f64(l.start[1]);
-        w.f64(l.end[0]);
-        w.f64(l.end[1]);
-    }
-    w.f64(s.gravity);
-    w.opt_f64(s.solver.time_step);
-    w.f64(s.solver.time_step_fraction);
+    let mut bytes = Vec::new();
+    // Serialising plain data into a Vec cannot fail: no I/O, no fallible Serialize impl.
+    ciborium::into_writer(s, &mut bytes).expect("a scene always serialises");
+    w.bytes(&bytes);
 }
 
 fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
-    let formulation = match r.u8("belt.formulation")? {
-        0 => Formulation::NodeKelvinVoigt,
-        t => return Err(format!("corrupt: belt.formulation tag {t}")),
-    };
-    let belt = BeltParams {
-        formulation,
-        axial_stiffness: r.f64("belt.axial_stiffness")?,
-        mass_per_length: r.f64("belt.mass_per_length")?,
-        bending_stiffness: r.f64("belt.bending_stiffness")?,
-        damping_ratio: r.f64("belt.damping_ratio")?,
-        length: r.opt_f64("belt.length")?,
-        elements: if r.bool("belt.elements")? {
-            Some(r.usize("belt.elements")?)
-        } else {
-            None
-        },
-        max_element_angle: r.f64("belt.max_element_angle")?,
-        tension_only: r.bool("belt.tension_only")?,
-        // Versions before 3 had the fixed limit of 5 %.
-        max_placement_strain: if r.version >= 3 {
-            r.f64("belt.max_placement_strain")?
-        } else {
-            0.05
-        },
-    };
-    // The smallest records (no options, empty name) take 56 and 43 bytes (version 3; 62
-    // and 49 before): bounds for the length checks.
-    let n_pulleys = r.len("pulleys", 56)?;
-    let mut pulleys = Vec::with_capacity(n_pulleys);
-    for i in 0..n_pulleys {
-        let f = |k: &str| format!("pulleys[{i}].{k}");
-        let name = r.str(&f("name"))?;
-        let center = [r.f64(&f("center"))?, r.f64(&f("center"))?];
-        let radius = r.f64(&f("radius"))?;
-        let mass = r.f64(&f("mass"))?;
-        let inertia = r.opt_f64(&f("inertia"))?;
-        let wrap = match r.u8(&f("wrap"))? {
-            0 => Wrap::CounterClockwise,
-            1 => Wrap::Clockwise,
-            t => return Err(format!("corrupt: {} tag {t}", f("wrap"))),
-        };
-        let friction = r.friction(&f("friction"))?;
-        let contact_stiffness = r.f64(&f("contact_stiffness"))?;
-        let (contact_damping, contact_damping_ratio) = r.contact_damping(&f("contact_damping"))?;
-        let bearing_damping = if r.version >= 4 {
-            r.f64(&f("bearing_damping"))?
-        } else {
-            0.0
-        };
-        let takeup = if r.bool(&f("takeup"))? {
-            Some(TakeupSpec {
-                direction: [r.f64(&f("takeup"))?, r.f64(&f("takeup"))?],
-                counterweight: r.f64(&f("takeup"))?,
-                travel_min: r.f64(&f("takeup"))?,
-                travel_max: r.f64(&f("takeup"))?,
-            })
-        } else {
-            None
-        };
-        let drive = match r.u8(&f("drive"))? {
-            0 => None,
-            tag @ (1 | 2) => {
-                let mut d = DriveSpec {
-                    torque: r.table(&f("drive.torque"))?,
-                    speed_factor: r.table(&f("drive.speed_factor"))?,
-                    viscous: r.f64(&f("drive.viscous"))?,
-                    inertia: r.f64(&f("drive.inertia"))?,
-                    ..DriveSpec::default()
-                };
-                if tag == 2 {
-                    let what = f("drive.start_curve");
-                    let shape = match r.u8(&what)? {
-                        t @ 0..=3 => StartShape::ALL[t as usize],
-                        t => return Err(format!("corrupt: {what}.shape tag {t}")),
-                    };
-                    d.start_curve = Some(StartCurve {
-                        shape,
-                        speed: r.f64(&what)?,
-                        ramp: r.f64(&what)?,
-                        start: r.f64(&what)?,
-                        prestart: r.f64(&what)?,
-                        creep_speed: r.opt_f64(&what)?,
-                        creep_ramp: r.opt_f64(&what)?,
-                    });
-                    d.max_torque = r.f64(&f("drive.max_torque"))?;
-                }
-                Some(d)
-            }
-            t => return Err(format!("corrupt: {} tag {t}", f("drive"))),
-        };
-        let brake = if r.bool(&f("brake"))? {
-            Some(BrakeSpec {
-                capacity: r.table(&f("brake.capacity"))?,
-            })
-        } else {
-            None
-        };
-        pulleys.push(PulleySpec {
-            name,
-            center,
-            radius,
-            mass,
-            inertia,
-            wrap,
-            friction,
-            contact_stiffness,
-            contact_damping,
-            contact_damping_ratio,
-            bearing_damping,
-            takeup,
-            drive,
-            brake,
-        });
-    }
-    let n_idlers = r.len("idlers", 43)?;
-    let mut idlers = Vec::with_capacity(n_idlers);
-    for i in 0..n_idlers {
-        let f = format!("idlers[{i}]");
-        let mut spec = IdlerSpec {
-            center: [r.f64(&f)?, r.f64(&f)?],
-            radius: r.f64(&f)?,
-            inertia: r.f64(&f)?,
-            contact_stiffness: r.f64(&f)?,
-            ..IdlerSpec::default()
-        };
-        (spec.contact_damping, spec.contact_damping_ratio) = r.contact_damping(&f)?;
-        spec.friction = r.friction(&f)?;
-        if r.version >= 2 {
-            spec.resistance = r.f64(&f)?;
-            spec.rotating_mass = r.f64(&f)?;
-        }
-        idlers.push(spec);
-    }
-    let mut loads = Vec::new();
-    if r.version >= 2 {
-        let n_loads = r.len("loads", 40)?;
-        for i in 0..n_loads {
-            let f = format!("loads[{i}]");
-            loads.push(LoadSpec {
-                mass_per_length: r.f64(&f)?,
-                start: [r.f64(&f)?, r.f64(&f)?],
-                end: [r.f64(&f)?, r.f64(&f)?],
-            });
-        }
-    }
-    let gravity = r.f64("gravity")?;
-    let solver = SolverParams {
-        time_step: r.opt_f64("solver.time_step")?,
-        time_step_fraction: r.f64("solver.time_step_fraction")?,
-    };
-    Ok(Scene {
-        belt,
-        pulleys,
-        idlers,
-        loads,
-        gravity,
-        solver,
-    })
+    let bytes = r.bytes("scene")?;
+    ciborium::from_reader(bytes).map_err(|e| format!("corrupt: the scene does not read back: {e}"))
 }
 
 fn write_state(w: &mut Writer, s: &State) {

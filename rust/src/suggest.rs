@@ -1,13 +1,13 @@
-//! "Did you mean ...?" suggestions for unknown keys.
+//! "Did you mean ...?" suggestions for unknown keys and names: the one implementation, used
+//! by the scene reader ([`crate::scene::read`]) for every form a scene comes in.
 //!
 //! [`close_match`] picks the same candidate as Python's
-//! `difflib.get_close_matches(word, candidates, n=1, cutoff=0.6)`, so that a scene read
-//! from a TOML file (checked in Python) and a scene given as a Python dict (checked here)
-//! get the same message. The similarity is difflib's Ratcliff/Obershelp ratio 2·M/T, with
-//! M the characters in the matching blocks found by recursively taking the longest common
-//! substring (first found wins, as in `SequenceMatcher.find_longest_match`) and T the total
-//! length of both strings. difflib's "autojunk" heuristic only applies to strings of 200
-//! characters or more, which keys never are; it is not reproduced.
+//! `difflib.get_close_matches(word, candidates, n=1, cutoff=0.6)` (the tests compare the
+//! two), a choice Python users know. The similarity is difflib's Ratcliff/Obershelp ratio
+//! 2·M/T, with M the characters in the matching blocks found by recursively taking the
+//! longest common substring (first found wins, as in `SequenceMatcher.find_longest_match`)
+//! and T the total length of both strings. difflib's "autojunk" heuristic only applies to
+//! strings of 200 characters or more, which keys never are; it is not reproduced.
 
 /// Similarity below which no suggestion is made (difflib's default cutoff).
 pub const CUTOFF: f64 = 0.6;

@@ -15,4 +15,5 @@ mod recorder;
 mod recording_params;
 mod rkf45;
 mod run_contract;
+mod scene_schema;
 mod speed_drive;

@@ -15,6 +15,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::scene::check_finite;
+use serde::{Deserialize, Serialize};
 
 /// Shape of a starting ramp, s(τ) on τ ∈ [0, 1].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -83,25 +84,41 @@ impl StartShape {
 /// `creep_speed` over `creep_ramp` seconds (same shape) and holds it until
 /// `start + prestart`; the main ramp then takes the speed from the creep speed (0 without
 /// a pre-start) to `speed` over `ramp` seconds, after which the speed stays at `speed`.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// In a scene (`[pulleys.drive.start_curve]`) `speed` and `ramp` are required; every other
+/// key defaults as [`StartCurve::default`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct StartCurve {
     /// Shape of both ramps. Default [`StartShape::Harrison`].
+    #[serde(default)]
     pub shape: StartShape,
     /// Final belt speed v₀ at the drive pulley surface, m/s, counter-clockwise positive
     /// (pulley speed ω = v/r). Required: finite and non-zero (the default 0 is refused).
+    #[serde(deserialize_with = "crate::scene::required")]
     pub speed: f64,
     /// Duration T of the main ramp, s, > 0. Required (the default 0 is refused).
+    #[serde(deserialize_with = "crate::scene::required")]
     pub ramp: f64,
     /// Time the curve begins (absolute simulated time), s, finite. Default 0.
+    #[serde(default)]
     pub start: f64,
     /// Duration of the pre-start (delay) section, s, ≥ 0. Default 0 (none).
+    #[serde(default)]
     pub prestart: f64,
     /// Creep speed held during the pre-start, m/s: between 0 and `speed` (same sign).
     /// `None`: 10 % of `speed`. Only with `prestart` > 0. Default `None`.
+    #[serde(default)]
     pub creep_speed: Option<f64>,
     /// Duration of the run-up to the creep speed, s, in (0, `prestart`]. `None`:
     /// `prestart`/2. Only with `prestart` > 0. Default `None`.
+    #[serde(default)]
     pub creep_ramp: Option<f64>,
+}
+
+impl StartCurve {
+    /// Keys a scene must give (they have no default).
+    pub const REQUIRED: [&'static str; 2] = ["speed", "ramp"];
 }
 
 impl Default for StartCurve {

@@ -1,8 +1,7 @@
 //! Python bindings: the only module that knows PyO3. Thin wrappers that convert arguments,
 //! call the core, and convert results and errors back. No panic crosses into Python.
 
-mod scene_dict;
-mod scene_out;
+mod scene;
 
 use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
@@ -94,7 +93,7 @@ impl PySimulation {
     #[new]
     fn new(scene: &Bound<'_, PyAny>) -> PyResult<Self> {
         guarded(|| {
-            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            let scene = scene::scene_from_py(scene).map_err(to_py)?;
             let inner = Simulation::new(&scene).map_err(to_py)?;
             Ok(PySimulation {
                 inner,
@@ -106,7 +105,7 @@ impl PySimulation {
     /// Replace the scene parameters and keep the state.
     fn set_scene(&mut self, scene: &Bound<'_, PyAny>) -> PyResult<()> {
         guarded(|| {
-            let scene = scene_dict::scene_from_dict(scene).map_err(to_py)?;
+            let scene = scene::scene_from_py(scene).map_err(to_py)?;
             self.inner.set_scene(&scene).map_err(to_py)
         })
     }
@@ -360,7 +359,7 @@ impl PySimulation {
     ) -> PyResult<Self> {
         guarded(|| {
             let expected = match scene {
-                Some(d) => Some(scene_dict::scene_from_dict(d).map_err(to_py)?),
+                Some(d) => Some(scene::scene_from_py(d).map_err(to_py)?),
                 None => None,
             };
             let inner = py
@@ -377,8 +376,8 @@ impl PySimulation {
     }
 
     /// The scene of the compiled model, in dict form (the keys of `Scene.to_dict()`).
-    fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        scene_out::scene_to_dict(py, &self.inner.model.scene)
+    fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        scene::to_py(py, &self.inner.model.scene)
     }
 
     /// Advance `steps` steps without recording.
@@ -526,10 +525,40 @@ fn start_curve_eval<'py>(
     times: Vec<f64>,
 ) -> PyResult<(Array1<'py>, Array1<'py>)> {
     guarded(|| {
-        let curve = scene_dict::start_curve_from_dict(curve, "start_curve").map_err(to_py)?;
+        let curve = scene::start_curve_from_py(curve, "start_curve").map_err(to_py)?;
         let (speed, accel): (Vec<f64>, Vec<f64>) = times.iter().map(|&t| curve.evaluate(t)).unzip();
         Ok((PyArray1::from_vec(py, speed), PyArray1::from_vec(py, accel)))
     })
+}
+
+/// Check a scene in dict form against the scene schema (unknown keys, types), raising
+/// `SceneError` naming the full path, the value and the rule. Values are checked when the
+/// scene compiles.
+#[pyfunction]
+fn check_scene(scene: &Bound<'_, PyAny>) -> PyResult<()> {
+    guarded(|| scene::scene_from_py(scene).map(|_| ()).map_err(to_py))
+}
+
+/// Check `value` as the scene table `table` (`"start_curve"`, `"pulley"`, ...), naming paths
+/// from `path`; raises `SceneError`.
+#[pyfunction]
+fn check_scene_table(table: &str, value: &Bound<'_, PyAny>, path: &str) -> PyResult<()> {
+    guarded(|| scene::check_table(table, value, path).map_err(to_py))
+}
+
+/// The rule text for an unknown key `key` among `known`: "unknown key, did you mean 'x'?
+/// (known keys here: ...)", the suggestion being the scene reader's (difflib's choice).
+#[pyfunction]
+fn unknown_key_rule(key: &str, known: Vec<String>) -> String {
+    crate::suggest::unknown_key_rule(key, known.iter().map(String::as_str))
+}
+
+/// The defaults of every table of the scene format (`"scene"`, `"belt"`, `"pulley"`,
+/// `"friction"`, `"takeup"`, `"drive"`, `"start_curve"`, `"brake"`, `"idler"`, `"load"`,
+/// `"solver"`, `"recording"`), each a dict of every key; required keys hold None.
+#[pyfunction]
+fn scene_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    guarded(|| scene::defaults(py))
 }
 
 /// The compiled extension module.
@@ -537,6 +566,10 @@ fn start_curve_eval<'py>(
 fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySimulation>()?;
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
+    m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;

@@ -4,9 +4,25 @@
 //! struct implements [`Default`] with the documented defaults, so a scene can be built as
 //! `PulleySpec { radius: 0.5, ..Default::default() }`. Nothing here is checked until
 //! [`Scene::validate`] runs (it is called by [`crate::model::Model::compile`]).
+//!
+//! These types are the one schema of a scene: their serde form is what a Python dict, a
+//! TOML scene file and a checkpoint hold (`docs/scene-format.md`). Defaults are the
+//! [`Default`] impls here (Python's dataclasses take theirs from them), every table denies
+//! unknown keys, and [`read`] turns any plain-value tree into a scene with messages naming
+//! the full path, the value and the rule. Adding a field: see "Adding a scene field" in
+//! `docs/scene-format.md`.
 
 use crate::error::{BeltError, BeltResult};
 use crate::start_curve::StartCurve;
+use serde::{Deserialize, Serialize};
+
+mod forms;
+pub mod read;
+mod validate;
+
+pub(crate) use forms::required;
+pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
+pub(crate) use validate::check_finite;
 
 /// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
 /// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
@@ -31,8 +47,9 @@ impl Formulation {
     }
 }
 
-/// Belt properties.
-#[derive(Debug, Clone, PartialEq)]
+/// Belt properties (the `[belt]` table).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct BeltParams {
     /// Discrete belt model. Default: [`Formulation::NodeKelvinVoigt`].
     pub formulation: Formulation,
@@ -133,7 +150,8 @@ impl Wrap {
     }
 }
 
-/// Friction between the belt and a pulley or idler.
+/// Friction between the belt and a pulley or idler. In a scene it is the `friction` table
+/// ([`FrictionKeys`]), absent for none.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum FrictionModel {
     /// Frictionless contact: no friction stage is compiled for this body.
@@ -198,52 +216,17 @@ impl Table {
         let (x0, x1, y0, y1) = (self.x[i - 1], self.x[i], self.y[i - 1], self.y[i]);
         y0 + (y1 - y0) * (x - x0) / (x1 - x0)
     }
-
-    /// Check the table given in a scene under the keys `{field}.{xkey}` and `{field}.{ykey}`
-    /// (e.g. `pulleys[0].drive.time` and `pulleys[0].drive.torque`), so that every message
-    /// names the key the user wrote.
-    fn validate(&self, field: &str, xkey: &str, ykey: &str, non_negative: bool) -> BeltResult<()> {
-        if self.x.len() != self.y.len() {
-            return Err(BeltError::invalid(
-                format!("{field}.{ykey}"),
-                format!("{} values", self.y.len()),
-                format!("needs as many values as {field}.{xkey} ({})", self.x.len()),
-            ));
-        }
-        if self.x.is_empty() {
-            return Err(BeltError::invalid(
-                format!("{field}.{xkey}"),
-                "[]",
-                "a table needs at least one point",
-            ));
-        }
-        for (i, (&x, &y)) in self.x.iter().zip(&self.y).enumerate() {
-            check_finite(&format!("{field}.{xkey}[{i}]"), x)?;
-            check_finite(&format!("{field}.{ykey}[{i}]"), y)?;
-            if non_negative && y < 0.0 {
-                return Err(BeltError::invalid(
-                    format!("{field}.{ykey}[{i}]"),
-                    y,
-                    "must be ≥ 0",
-                ));
-            }
-            if i > 0 && x <= self.x[i - 1] {
-                return Err(BeltError::invalid(
-                    format!("{field}.{xkey}[{i}]"),
-                    x,
-                    format!("must increase strictly (previous value {})", self.x[i - 1]),
-                ));
-            }
-        }
-        Ok(())
-    }
 }
 
 /// A drive on a pulley. Torque-controlled (thesis eq. 4.66): T(t, ω) = f(t)·g(ω) − b·ω.
 /// Speed-controlled (a VFD following a [`StartCurve`], `docs/drives.md`): each step the
 /// motor supplies the torque that makes the pulley follow the curve, within ±`max_torque`,
 /// plus the load torque −b·ω; the torque table must then be zero and `speed_factor` empty.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// In a scene its tables are the keys `time`/`torque` and `speed`/`speed_factor`
+/// ([`DriveKeys`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "DriveKeys", try_from = "DriveKeys")]
 pub struct DriveSpec {
     /// f(t): torque against time, N·m, positive counter-clockwise. Default: 0.
     pub torque: Table,
@@ -288,67 +271,28 @@ impl DriveSpec {
     }
 }
 
-impl DriveSpec {
-    /// The rules of a speed-controlled drive (`pulley` names the pulley, e.g. `pulleys[0]`):
-    /// a valid curve, no torque table, no speed factor, no brake on the same pulley, and a
-    /// `max_torque` > 0 that is given only with a curve.
-    fn validate_speed_control(&self, pulley: &str, has_brake: bool) -> BeltResult<()> {
-        let f = format!("{pulley}.drive");
-        if self.max_torque.is_nan() || self.max_torque <= 0.0 {
-            return Err(BeltError::invalid(
-                format!("{f}.max_torque"),
-                self.max_torque,
-                "must be > 0 (may be inf)",
-            ));
-        }
-        let Some(curve) = &self.start_curve else {
-            if self.max_torque != f64::INFINITY {
-                // It would be silently ignored.
-                return Err(BeltError::invalid(
-                    format!("{f}.max_torque"),
-                    self.max_torque,
-                    format!("limits a speed-controlled drive only: give {f}.start_curve, or leave max_torque out"),
-                ));
-            }
-            return Ok(());
-        };
-        curve.validate(&format!("{f}.start_curve"))?;
-        if let Some((i, &y)) = self.torque.y.iter().enumerate().find(|(_, y)| **y != 0.0) {
-            return Err(BeltError::invalid(
-                format!("{f}.torque[{i}]"),
-                y,
-                format!("must be 0 with {f}.start_curve: a drive is either torque-controlled (time/torque table) or speed-controlled (start_curve), not both"),
-            ));
-        }
-        if !self.speed_factor.x.is_empty() || !self.speed_factor.y.is_empty() {
-            return Err(BeltError::invalid(
-                format!("{f}.speed_factor"),
-                format!("{:?}", self.speed_factor.y),
-                format!("has no effect with {f}.start_curve (it scales the torque table, which a speed-controlled drive does not have): leave it out"),
-            ));
-        }
-        if has_brake {
-            return Err(BeltError::invalid(
-                format!("{pulley}.brake"),
-                "a brake",
-                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake: the drive holds the pulley itself (remove one of them)"),
-            ));
-        }
-        Ok(())
-    }
-}
-
 /// A brake: a Coulomb torque that opposes rotation and holds the pulley at rest up to its
 /// capacity.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// In a scene its table is the keys `time`/`capacity` ([`BrakeKeys`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "BrakeKeys", try_from = "BrakeKeys")]
 pub struct BrakeSpec {
-    /// Holding/braking torque capacity against time, N·m, ≥ 0.
+    /// Holding/braking torque capacity against time, N·m, ≥ 0. Default 0.
     pub capacity: Table,
+}
+
+impl Default for BrakeSpec {
+    fn default() -> Self {
+        BrakeSpec {
+            capacity: Table::constant(0.0),
+        }
+    }
 }
 
 /// A gravity takeup: the pulley translates on a straight line, pulled by a counterweight
 /// (thesis eq. 4.63).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct TakeupSpec {
     /// Unit vector along which the counterweight pulls. Default (0, −1): a vertical gravity
     /// takeup hanging in the loop.
@@ -374,7 +318,8 @@ impl Default for TakeupSpec {
 }
 
 /// A pulley: fixed centre and free rotation, optionally a gravity takeup, a drive and a brake.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct PulleySpec {
     /// Name used in messages and results; unique among the pulleys unless empty. Default ""
     /// (messages then use the index).
@@ -390,6 +335,7 @@ pub struct PulleySpec {
     /// Sense of the wrap. Default counter-clockwise.
     pub wrap: Wrap,
     /// Belt–pulley friction. Default frictionless.
+    #[serde(with = "forms::friction")]
     pub friction: FrictionModel,
     /// Nodal penalty stiffness, N/m of penetration (thesis eq. 4.71 with k_c/R_p). Zero
     /// switches contact with this pulley off (the belt passes through it); with zero on
@@ -403,8 +349,8 @@ pub struct PulleySpec {
     /// material). `None`: [`DEFAULT_CONTACT_DAMPING_RATIO`] unless `contact_damping` is
     /// given. Default `None`.
     pub contact_damping_ratio: Option<f64>,
-    /// Linear viscous drag in the bearings, N·m·s/rad: a torque −b·ω on the pulley (a free
-    /// pulley spins down as ω₀·exp(−b·t/I)). Zero compiles no `bearing_drag` stage.
+    /// Linear viscous drag of the bearings, N·m·s/rad, ≥ 0: torque −b·ω on the pulley (a
+    /// free pulley spins down as ω₀·e^(−b·t/I)). 0 compiles no `bearing_drag` stage.
     /// Default 0.
     pub bearing_damping: f64,
     /// Gravity takeup, if this pulley translates. Default `None`.
@@ -445,7 +391,8 @@ impl PulleySpec {
 }
 
 /// An idler roll in contact with the belt centre line (thesis eq. 4.95–4.117).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct IdlerSpec {
     /// Centre, m.
     pub center: [f64; 2],
@@ -463,6 +410,7 @@ pub struct IdlerSpec {
     /// Default `None`.
     pub contact_damping_ratio: Option<f64>,
     /// Belt–idler friction. Default frictionless (the roll then never turns).
+    #[serde(with = "forms::friction")]
     pub friction: FrictionModel,
     /// Running resistance: DIN 22101's artificial friction coefficient f, dimensionless,
     /// ≥ 0. The belt meets a tangential force at the contact point that opposes its motion
@@ -496,7 +444,8 @@ impl Default for IdlerSpec {
 /// (`docs/loads.md`). The material moves with the belt: each step the belt material points
 /// nearest `start` and `end` are found, and every node carries the material on its
 /// tributary length inside the zone between them, so node masses change during a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct LoadSpec {
     /// Material per metre of unstretched belt, kg/m, finite, ≥ 0 (a volumetric feeder: the
     /// same whatever the belt speed). Default 0.
@@ -525,7 +474,8 @@ impl Default for LoadSpec {
 pub const LOAD_POINT_TOLERANCE: f64 = 1.0;
 
 /// Time-stepping settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct SolverParams {
     /// Fixed time step, s. `None`: `time_step_fraction` × the estimated stability limit.
     /// A value above the limit is refused. Default `None`.
@@ -552,7 +502,8 @@ pub const RECORDING_CHANNELS: [&str; 3] = ["tension", "node_position", "node_vel
 /// How a scene file asks to be run and recorded (the `[recording]` table). The engine
 /// itself does not use it: the command line (`beltrs run`) does. It is read and checked
 /// here so that a scene given in any form is checked by the same rules.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct RecordingParams {
     /// Simulated time of the run, s, ≥ 0. Default 1.
     pub duration: f64,
@@ -563,6 +514,7 @@ pub struct RecordingParams {
     /// `None`.
     pub every: Option<u64>,
     /// Optional large arrays to record, from [`RECORDING_CHANNELS`]. Default: all of them.
+    #[serde(deserialize_with = "forms::strings")]
     pub channels: Vec<String>,
     /// Relax to static equilibrium before the run. Default true.
     pub stabilise: bool,
@@ -584,80 +536,29 @@ impl Default for RecordingParams {
     }
 }
 
-impl RecordingParams {
-    /// Check every field: finite non-negative duration, positive interval, `every` ≥ 1, not
-    /// both `interval` and `every`, `stabilise_friction` only with `stabilise`, known and
-    /// distinct channel names.
-    pub fn validate(&self) -> BeltResult<()> {
-        check_non_negative("recording.duration", self.duration)?;
-        if let Some(interval) = self.interval {
-            check_positive("recording.interval", interval)?;
-        }
-        if let Some(every) = self.every {
-            if every == 0 {
-                return Err(BeltError::invalid("recording.every", every, "must be ≥ 1"));
-            }
-            if let Some(interval) = self.interval {
-                return Err(BeltError::invalid(
-                    "recording.every",
-                    every,
-                    format!(
-                        "give recording.interval (here {interval}) or recording.every, not both"
-                    ),
-                ));
-            }
-        }
-        if self.stabilise_friction && !self.stabilise {
-            // It would be silently ignored.
-            return Err(BeltError::invalid(
-                "recording.stabilise_friction",
-                true,
-                "has no effect with recording.stabilise = false (set both, or neither)",
-            ));
-        }
-        for (i, c) in self.channels.iter().enumerate() {
-            if !RECORDING_CHANNELS.contains(&c.as_str()) {
-                let hint = match crate::suggest::close_match(c, RECORDING_CHANNELS) {
-                    Some(s) => format!(", did you mean \"{s}\"?"),
-                    None => String::new(),
-                };
-                return Err(BeltError::invalid(
-                    format!("recording.channels[{i}]"),
-                    format!("{c:?}"),
-                    format!(
-                        "unknown channel{hint} (known: {})",
-                        RECORDING_CHANNELS.join(", ")
-                    ),
-                ));
-            }
-            if self.channels[..i].contains(c) {
-                return Err(BeltError::invalid(
-                    format!("recording.channels[{i}]"),
-                    format!("{c:?}"),
-                    "listed twice",
-                ));
-            }
-        }
-        Ok(())
-    }
-}
-
 /// A whole scene.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Scene {
     /// Belt properties.
     pub belt: BeltParams,
     /// Pulleys in the order the belt meets them; the loop closes from the last to the first.
+    #[serde(deserialize_with = "forms::tables")]
     pub pulleys: Vec<PulleySpec>,
     /// Idlers (in any order).
+    #[serde(deserialize_with = "forms::tables")]
     pub idlers: Vec<IdlerSpec>,
     /// Bulk material loads on the belt (any order). Default none.
+    #[serde(deserialize_with = "forms::tables")]
     pub loads: Vec<LoadSpec>,
     /// Gravitational acceleration, m/s², acting in −y. Zero disables the gravity stage.
     /// Default 9.81.
     pub gravity: f64,
     /// Time-stepping settings.
     pub solver: SolverParams,
+    /// How the scene asks to be run and recorded (not used by the engine itself: the command
+    /// line and `beltrs.Scene.recording` do). Checked with the scene.
+    pub recording: RecordingParams,
 }
 
 impl Default for Scene {
@@ -669,268 +570,7 @@ impl Default for Scene {
             loads: Vec::new(),
             gravity: 9.81,
             solver: SolverParams::default(),
+            recording: RecordingParams::default(),
         }
-    }
-}
-
-/// Error unless `value` is finite.
-pub(crate) fn check_finite(field: &str, value: f64) -> BeltResult<()> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(BeltError::invalid(field, value, "must be a finite number"))
-    }
-}
-
-fn check_positive(field: &str, value: f64) -> BeltResult<()> {
-    check_finite(field, value)?;
-    if value > 0.0 {
-        Ok(())
-    } else {
-        Err(BeltError::invalid(field, value, "must be > 0"))
-    }
-}
-
-fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
-    check_finite(field, value)?;
-    if value >= 0.0 {
-        Ok(())
-    } else {
-        Err(BeltError::invalid(field, value, "must be ≥ 0"))
-    }
-}
-
-/// `contact_damping` (N·s/m) and `contact_damping_ratio` of the body `f`: each finite and
-/// ≥ 0, and not both given.
-fn check_contact_damping(f: &str, absolute: Option<f64>, ratio: Option<f64>) -> BeltResult<()> {
-    if let Some(c) = absolute {
-        check_non_negative(&format!("{f}.contact_damping"), c)?;
-    }
-    if let Some(z) = ratio {
-        check_non_negative(&format!("{f}.contact_damping_ratio"), z)?;
-    }
-    if let (Some(c), Some(_)) = (absolute, ratio) {
-        return Err(BeltError::invalid(
-            format!("{f}.contact_damping"),
-            c,
-            format!("give contact_damping (N·s/m) or {f}.contact_damping_ratio (fraction of critical), not both"),
-        ));
-    }
-    Ok(())
-}
-
-fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
-    if let FrictionModel::StickForce {
-        static_coefficient,
-        kinetic_coefficient,
-    } = *model
-    {
-        // Named by the scene keys (`friction.static`, `friction.kinetic`).
-        check_non_negative(&format!("{field}.static"), static_coefficient)?;
-        check_non_negative(&format!("{field}.kinetic"), kinetic_coefficient)?;
-        if kinetic_coefficient > static_coefficient {
-            return Err(BeltError::invalid(
-                format!("{field}.kinetic"),
-                kinetic_coefficient,
-                format!("must not exceed the static coefficient {static_coefficient}"),
-            ));
-        }
-    }
-    Ok(())
-}
-
-impl Scene {
-    /// Check every parameter on its own and the pairwise rules that need no geometry
-    /// (overlaps). Path-dependent rules (closure, belt length, element length) are checked
-    /// when the path is built in [`crate::model::Model::compile`].
-    pub fn validate(&self) -> BeltResult<()> {
-        check_non_negative("gravity", self.gravity)?;
-        let b = &self.belt;
-        check_positive("belt.axial_stiffness", b.axial_stiffness)?;
-        check_positive("belt.mass_per_length", b.mass_per_length)?;
-        check_non_negative("belt.bending_stiffness", b.bending_stiffness)?;
-        check_non_negative("belt.damping_ratio", b.damping_ratio)?;
-        if let Some(length) = b.length {
-            check_positive("belt.length", length)?;
-        }
-        if let Some(n) = b.elements {
-            if n < 3 {
-                return Err(BeltError::invalid(
-                    "belt.elements",
-                    n,
-                    "a closed belt needs at least 3 elements",
-                ));
-            }
-            if n > MAX_ELEMENTS {
-                return Err(BeltError::invalid(
-                    "belt.elements",
-                    n,
-                    format!("must be at most {MAX_ELEMENTS}"),
-                ));
-            }
-        }
-        check_positive("belt.max_placement_strain", b.max_placement_strain)?;
-        check_positive("belt.max_element_angle", b.max_element_angle)?;
-        if b.max_element_angle > std::f64::consts::FRAC_PI_3 {
-            return Err(BeltError::invalid(
-                "belt.max_element_angle",
-                b.max_element_angle,
-                "must be at most π/3 rad (60°): a longer element cuts through the pulley",
-            ));
-        }
-        let s = &self.solver;
-        if let Some(dt) = s.time_step {
-            check_positive("solver.time_step", dt)?;
-        }
-        check_positive("solver.time_step_fraction", s.time_step_fraction)?;
-        if s.time_step_fraction > 1.0 {
-            return Err(BeltError::invalid(
-                "solver.time_step_fraction",
-                s.time_step_fraction,
-                "must be in (0, 1]: 1 is the stability limit",
-            ));
-        }
-
-        if self.pulleys.len() < 2 {
-            return Err(BeltError::invalid(
-                "pulleys",
-                format!("{} pulley(s)", self.pulleys.len()),
-                "a closed belt path needs at least 2 pulleys",
-            ));
-        }
-        for (i, p) in self.pulleys.iter().enumerate() {
-            let f = format!("pulleys[{i}]");
-            if !p.name.is_empty() {
-                if let Some(j) = self.pulleys[..i].iter().position(|q| q.name == p.name) {
-                    return Err(BeltError::invalid(
-                        format!("{f}.name"),
-                        format!("{:?}", p.name),
-                        format!("already the name of pulleys[{j}]: names must be unique (they pick a pulley in results and from Python)"),
-                    ));
-                }
-            }
-            check_finite(&format!("{f}.center[0]"), p.center[0])?;
-            check_finite(&format!("{f}.center[1]"), p.center[1])?;
-            check_positive(&format!("{f}.radius"), p.radius)?;
-            check_positive(&format!("{f}.mass"), p.mass)?;
-            if let Some(inertia) = p.inertia {
-                check_positive(&format!("{f}.inertia"), inertia)?;
-            }
-            check_non_negative(&format!("{f}.contact_stiffness"), p.contact_stiffness)?;
-            check_contact_damping(&f, p.contact_damping, p.contact_damping_ratio)?;
-            check_non_negative(&format!("{f}.bearing_damping"), p.bearing_damping)?;
-            check_friction(&format!("{f}.friction"), &p.friction)?;
-            if p.contact_stiffness == 0.0 && !p.friction.is_none() {
-                // Friction needs a normal force: it would be silently ignored.
-                let mu = match p.friction {
-                    FrictionModel::StickForce {
-                        static_coefficient, ..
-                    } => static_coefficient,
-                    FrictionModel::None => 0.0,
-                };
-                return Err(BeltError::invalid(
-                    format!("{f}.friction.static"),
-                    mu,
-                    format!("friction needs contact, and {f}.contact_stiffness = 0 switches contact with this pulley off (give contact_stiffness > 0, or no friction)"),
-                ));
-            }
-            if let Some(t) = &p.takeup {
-                check_finite(&format!("{f}.takeup.direction[0]"), t.direction[0])?;
-                check_finite(&format!("{f}.takeup.direction[1]"), t.direction[1])?;
-                let norm = t.direction[0].hypot(t.direction[1]);
-                if (norm - 1.0).abs() > 1e-9 {
-                    return Err(BeltError::invalid(
-                        format!("{f}.takeup.direction"),
-                        format!("[{}, {}]", t.direction[0], t.direction[1]),
-                        format!("must be a unit vector (length 1 within 1e-9; its length is {norm}): it is the line the takeup moves on"),
-                    ));
-                }
-                check_non_negative(&format!("{f}.takeup.counterweight"), t.counterweight)?;
-                if t.travel_min.is_nan() || t.travel_min > 0.0 {
-                    return Err(BeltError::invalid(
-                        format!("{f}.takeup.travel_min"),
-                        t.travel_min,
-                        "must be ≤ 0 (travel is measured from the initial position)",
-                    ));
-                }
-                if t.travel_max.is_nan() || t.travel_max < 0.0 {
-                    return Err(BeltError::invalid(
-                        format!("{f}.takeup.travel_max"),
-                        t.travel_max,
-                        "must be ≥ 0 (travel is measured from the initial position)",
-                    ));
-                }
-            }
-            if let Some(d) = &p.drive {
-                d.torque
-                    .validate(&format!("{f}.drive"), "time", "torque", false)?;
-                if !d.speed_factor.x.is_empty() || !d.speed_factor.y.is_empty() {
-                    d.speed_factor.validate(
-                        &format!("{f}.drive"),
-                        "speed",
-                        "speed_factor",
-                        false,
-                    )?;
-                }
-                check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
-                check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
-                d.validate_speed_control(&f, p.brake.is_some())?;
-            }
-            if let Some(br) = &p.brake {
-                br.capacity
-                    .validate(&format!("{f}.brake"), "time", "capacity", true)?;
-            }
-        }
-        for (i, d) in self.idlers.iter().enumerate() {
-            let f = format!("idlers[{i}]");
-            check_finite(&format!("{f}.center[0]"), d.center[0])?;
-            check_finite(&format!("{f}.center[1]"), d.center[1])?;
-            check_positive(&format!("{f}.radius"), d.radius)?;
-            check_positive(&format!("{f}.inertia"), d.inertia)?;
-            check_positive(&format!("{f}.contact_stiffness"), d.contact_stiffness)?;
-            check_contact_damping(&f, d.contact_damping, d.contact_damping_ratio)?;
-            check_friction(&format!("{f}.friction"), &d.friction)?;
-            check_non_negative(&format!("{f}.resistance"), d.resistance)?;
-            check_non_negative(&format!("{f}.rotating_mass"), d.rotating_mass)?;
-        }
-        for (i, l) in self.loads.iter().enumerate() {
-            let f = format!("loads[{i}]");
-            check_non_negative(&format!("{f}.mass_per_length"), l.mass_per_length)?;
-            for (key, p) in [("start", l.start), ("end", l.end)] {
-                check_finite(&format!("{f}.{key}[0]"), p[0])?;
-                check_finite(&format!("{f}.{key}[1]"), p[1])?;
-            }
-        }
-        // Bodies must not overlap (thesis §4.3: pulleys and idlers never touch each other).
-        let circles: Vec<(String, [f64; 2], f64)> = self
-            .pulleys
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (format!("pulleys[{i}]"), p.center, p.radius))
-            .chain(
-                self.idlers
-                    .iter()
-                    .enumerate()
-                    .map(|(i, d)| (format!("idlers[{i}]"), d.center, d.radius)),
-            )
-            .collect();
-        for a in 0..circles.len() {
-            for b in (a + 1)..circles.len() {
-                let (na, ca, ra) = &circles[a];
-                let (nb, cb, rb) = &circles[b];
-                let dist = (ca[0] - cb[0]).hypot(ca[1] - cb[1]);
-                if dist < ra + rb {
-                    return Err(BeltError::invalid(
-                        format!("{nb}.center"),
-                        format!("[{}, {}]", cb[0], cb[1]),
-                        format!(
-                            "overlaps {na} (centres {dist:.6} m apart, radii sum {:.6} m)",
-                            ra + rb
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
     }
 }
