@@ -13,13 +13,14 @@ from .model import compile as compile  # not in __all__: a star import would sha
 from .result import Result
 from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
-from .simulation import Simulation
+from .simulation import CheckpointWarning, Simulation
 
 __all__ = [
     "Belt",
     "BeltrsError",
     "Brake",
     "CheckpointError",
+    "CheckpointWarning",
     "DivergenceError",
     "Drive",
     "Friction",

@@ -48,6 +48,8 @@ class Result:
         record_every: steps between recorded instants at the end of the run: the requested
             interval, doubled each time the recording reached its bound (``max_samples``)
             and dropped every other instant.
+        checkpoint_error: the last :class:`beltrs.CheckpointError` of a periodic or final
+            checkpoint that could not be written (the run went on), else None.
     """
 
     time: np.ndarray
@@ -75,6 +77,7 @@ class Result:
     interrupted: bool = False
     pulley_names: list[str] = field(default_factory=list)
     record_every: int = 1
+    checkpoint_error: Optional[BaseException] = None
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":

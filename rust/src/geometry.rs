@@ -199,60 +199,118 @@ impl BeltPath {
     }
 
     /// From arc length `s0`, the arc length of the next point on the path at straight-line
-    /// distance `chord` (searched within `[s0, s0 + 2·chord]`, enough for wraps ≤ 180° per
+    /// distance `chord` (searched within `[s0, s0 + 4·chord]`, enough for wraps ≤ 180° per
     /// chord).
+    ///
+    /// The root is found by regula falsi with the Illinois modification (superlinear, a
+    /// handful of evaluations instead of the 60 of a bisection to full precision): compile
+    /// time is dominated by this search (docs/runtime.md, "Scale guards").
     fn next_at_chord(&self, s0: f64, chord: f64) -> f64 {
         let p0 = self.point(s0);
-        let (mut lo, mut hi) = (s0, s0 + chord);
+        let gap = |s: f64| (self.point(s) - p0).norm() - chord;
         // Expand until the chord is reached (arc ≥ chord always, so start at s0 + chord).
-        while (self.point(hi) - p0).norm() < chord && hi < s0 + 4.0 * chord {
-            lo = hi;
+        let (mut lo, mut glo) = (s0, -chord);
+        let mut hi = s0 + chord;
+        let mut ghi = gap(hi);
+        while ghi < 0.0 && hi < s0 + 4.0 * chord {
+            (lo, glo) = (hi, ghi);
             hi += 0.25 * chord;
+            ghi = gap(hi);
         }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if (self.point(mid) - p0).norm() < chord {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+        // As fine as the arc length and coordinates resolve: a few ulps.
+        let tolerance = 8.0 * f64::EPSILON * (s0.abs() + chord + p0.amax());
+        if ghi < 0.0 || ghi <= tolerance {
+            // On a straight span the first guess is the answer.
+            return hi;
         }
-        0.5 * (lo + hi)
+        illinois(lo, glo, hi, ghi, tolerance, gap)
     }
 
     /// Place `n` nodes on the path so that all `n` chords (including the closing one) are
     /// equal. Returns the node positions and the common chord length. Starting at s = 0.
-    pub fn equal_chord_nodes(&self, n: usize) -> (Vec<Vector2<f64>>, f64) {
-        let walk = |chord: f64| -> f64 {
+    /// Polls [`crate::interrupt`] as it goes (a million nodes take a few seconds).
+    pub fn equal_chord_nodes(&self, n: usize) -> BeltResult<(Vec<Vector2<f64>>, f64)> {
+        let mut stopped = Ok(());
+        let mut walk = |chord: f64| -> f64 {
             let mut s = 0.0;
             for _ in 0..n {
+                if stopped.is_err() {
+                    return f64::NAN;
+                }
                 s = self.next_at_chord(s, chord);
+                stopped = crate::interrupt::check(WORK_PER_NODE);
             }
-            s
+            s - self.length
         };
-        // walk(c) increases with c; find walk(c) = length by bisection.
+        // walk(c) − length increases with c and is smooth (close to n·c − length): a few
+        // steps of regula falsi find its root, where bisection took about 45 walks.
         let arc = self.length / n as f64;
-        let (mut lo, mut hi) = (0.5 * arc, arc);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if walk(mid) < self.length {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-13 * arc {
-                break;
-            }
-        }
-        let chord = 0.5 * (lo + hi);
+        let (lo, hi) = (0.5 * arc, arc);
+        let (flo, fhi) = (walk(lo), walk(hi));
+        // The walk sums n arc lengths, each resolved to a few ulps: ask no more of it.
+        let tolerance = (1e-13 + 8.0 * n as f64 * f64::EPSILON) * self.length;
+        let chord = illinois(lo, flo, hi, fhi, tolerance, &mut walk);
+        stopped?;
         let mut nodes = Vec::with_capacity(n);
         let mut s = 0.0;
         for _ in 0..n {
             nodes.push(self.point(s));
             s = self.next_at_chord(s, chord);
+            crate::interrupt::check(WORK_PER_NODE)?;
         }
-        (nodes, chord)
+        Ok((nodes, chord))
     }
+}
+
+/// Work units ([`crate::interrupt::check`]) of placing one node: about 10 path evaluations.
+const WORK_PER_NODE: u64 = 64;
+
+/// The root of `f` in `[lo, hi]` (with `f(lo) = flo < 0 ≤ fhi = f(hi)`) by regula falsi with
+/// the Illinois modification: stops when `|f| ≤ tolerance` or the bracket can shrink no
+/// further (at most 200 evaluations). If the bracket is not a sign change, its midpoint.
+fn illinois(
+    mut lo: f64,
+    mut flo: f64,
+    mut hi: f64,
+    mut fhi: f64,
+    tolerance: f64,
+    mut f: impl FnMut(f64) -> f64,
+) -> f64 {
+    if !(flo < 0.0 && fhi >= 0.0) {
+        return 0.5 * (lo + hi);
+    }
+    let mut x = hi;
+    let mut side = 0i8;
+    for _ in 0..200 {
+        let guess = (lo * fhi - hi * flo) / (fhi - flo);
+        // Falls back to bisection when the secant leaves the bracket (round-off).
+        x = if guess > lo && guess < hi {
+            guess
+        } else {
+            0.5 * (lo + hi)
+        };
+        if !(x > lo && x < hi) {
+            break;
+        }
+        let fx = f(x);
+        if fx.abs() <= tolerance {
+            break;
+        }
+        if fx < 0.0 {
+            (lo, flo) = (x, fx);
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, fhi) = (x, fx);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    x
 }
 
 #[cfg(test)]
@@ -347,7 +405,7 @@ mod tests {
     #[test]
     fn equal_chords_close_the_loop() {
         let path = BeltPath::from_pulleys(&loop_h()).unwrap();
-        let (nodes, chord) = path.equal_chord_nodes(89);
+        let (nodes, chord) = path.equal_chord_nodes(89).unwrap();
         for i in 0..nodes.len() {
             let l = (nodes[(i + 1) % nodes.len()] - nodes[i]).norm();
             assert!(

@@ -19,6 +19,7 @@ pub mod error;
 pub mod forces;
 pub mod friction;
 pub mod geometry;
+pub mod interrupt;
 pub mod loads;
 pub mod model;
 pub mod presets;

@@ -12,6 +12,12 @@ use crate::loads::LoadModel;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
 
+/// Smallest time step a scene may compile to, s. A stable step below it means that a
+/// stiffness, damping or mass is out of proportion (usually wrong units): one simulated
+/// second would take more than 10⁹ steps, and a step that underflows to zero would never
+/// advance time. Such scenes are refused at compile time (docs/runtime.md).
+pub const MIN_TIME_STEP: f64 = 1e-9;
+
 /// One step of the force evaluation. The compiled list holds only the stages a scene needs
 /// (a disabled effect is not in the list, so it costs nothing).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -318,7 +324,7 @@ impl Model {
                 ),
             ));
         }
-        let (initial_positions, _chord) = path.equal_chord_nodes(n);
+        let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
 
         let rho = belt.mass_per_length;
         let k = belt.axial_stiffness / l0;
@@ -581,6 +587,23 @@ impl Model {
             }
             None => self.scene.solver.time_step_fraction * limit,
         };
+        if !(self.dt >= MIN_TIME_STEP) {
+            let (field, value) = match self.scene.solver.time_step {
+                Some(dt) => ("solver.time_step", dt),
+                None => (
+                    "solver.time_step_fraction",
+                    self.scene.solver.time_step_fraction,
+                ),
+            };
+            return Err(BeltError::invalid(
+                field,
+                value,
+                format!(
+                    "gives a time step of {:e} s (stability limit {limit:e} s, set by {}), below the floor of {MIN_TIME_STEP:e} s: one second would take over 10^9 steps; a stiffness, damping or mass is out of proportion (check the units)",
+                    self.dt, self.dt_cause
+                ),
+            ));
+        }
         Ok(())
     }
 

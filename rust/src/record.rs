@@ -225,6 +225,64 @@ impl Recording {
         }
     }
 
+    /// The name of the first buffer whose last recorded instant holds a non-finite value
+    /// (`None` if that instant is finite or nothing is recorded).
+    pub fn last_row_non_finite(&mut self) -> Option<&'static str> {
+        const NAMES: [&str; 18] = [
+            "time",
+            "tension",
+            "node_position",
+            "node_velocity",
+            "pulley_position",
+            "takeup_travel",
+            "pulley_speed",
+            "friction_torque",
+            "drive_torque",
+            "brake_torque",
+            "pulley_force",
+            "normal_force",
+            "friction_force",
+            "contact_nodes",
+            "slipping_nodes",
+            "idler_force",
+            "idler_speed",
+            "energy",
+        ];
+        if self.is_empty() {
+            return None;
+        }
+        let widths = self.row_widths();
+        let bad = self
+            .buffers_mut()
+            .into_iter()
+            .zip(widths)
+            .position(|(buf, w)| buf[buf.len() - w..].iter().any(|v| !v.is_finite()));
+        bad.map(|i| NAMES[i])
+    }
+
+    /// Drop the last recorded instant.
+    pub fn pop_row(&mut self) {
+        let rows = self.len();
+        if rows == 0 {
+            return;
+        }
+        let widths = self.row_widths();
+        for (buf, w) in self.buffers_mut().into_iter().zip(widths) {
+            buf.truncate((rows - 1) * w);
+        }
+    }
+
+    /// Move the recorded buffers out (trimmed to their length), leaving an empty recording
+    /// of the same sizes: the bindings hand them to NumPy without a copy.
+    pub fn take(&mut self) -> Recording {
+        let empty = Recording::new(self.channels, self.nodes, self.pulleys, self.idlers);
+        let mut out = std::mem::replace(self, empty);
+        for buf in out.buffers_mut() {
+            buf.shrink_to_fit();
+        }
+        out
+    }
+
     /// Bytes held by the buffers (their length, not their capacity).
     pub fn bytes(&self) -> usize {
         self.len() * self.bytes_per_sample()

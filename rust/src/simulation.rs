@@ -255,6 +255,9 @@ pub struct StabiliseReport {
     pub converged: bool,
     /// Number of times the velocities were zeroed.
     pub resets: u64,
+    /// Whether the caller's interrupt hook stopped it ([`crate::interrupt`]); the state is
+    /// the last relaxation step's, at rest.
+    pub interrupted: bool,
 }
 
 impl StabiliseReport {
@@ -265,6 +268,7 @@ impl StabiliseReport {
         self.resets += r.resets;
         self.residual = r.residual;
         self.converged = r.converged;
+        self.interrupted = r.interrupted;
     }
 }
 
@@ -917,7 +921,7 @@ impl Simulation {
 
     /// Advance `steps` steps without recording.
     pub fn step(&mut self, steps: u64) -> BeltResult<()> {
-        self.steps_with(steps, false, |_| {})
+        self.steps_with(steps, false, |_| Ok(()))
     }
 
     /// `steps` steps of: evaluate all forces, `between` (e.g. record), integrate. Unless
@@ -932,13 +936,16 @@ impl Simulation {
         &mut self,
         steps: u64,
         tensions: bool,
-        mut between: impl FnMut(&mut Self),
+        mut between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<()> {
         let fuse = self.profile.is_none() && self.model.loads.is_empty();
         let mut axial_done = false;
         for k in 0..steps {
+            // Between whole steps only: an interrupted call leaves a consistent state (the
+            // fused axial pass is redone by the next call's complete evaluation).
+            crate::interrupt::check(self.model.nodes as u64)?;
             self.evaluate_after(Effects::ALL, axial_done);
-            between(self);
+            between(self)?;
             axial_done = fuse && k + 1 < steps;
             self.integrate_then(axial_done.then_some(tensions))?;
         }
@@ -974,35 +981,63 @@ impl Simulation {
     }
 
     /// Sample if the step counter is on the recording grid, decimating first when full.
-    fn record_if_due(&mut self) {
+    fn record_if_due(&mut self) -> BeltResult<()> {
         if !self.record_counter.is_multiple_of(self.record_every) {
-            return;
+            return Ok(());
         }
         if self.recording.len() >= self.max_samples {
             self.recording.decimate();
             self.record_every = self.record_every.saturating_mul(2);
             if !self.record_counter.is_multiple_of(self.record_every) {
-                return;
+                return Ok(());
             }
         }
         self.recording.reserve_one(self.max_samples);
         self.sample();
+        // A finite state can still give non-finite derived values (energies of nodes
+        // 10^157 m away, forces of an absurd gravity): the run stops, and the recording
+        // keeps only finite rows.
+        if let Some(column) = self.recording.last_row_non_finite() {
+            self.recording.pop_row();
+            return Err(self.non_finite_sample(column));
+        }
+        Ok(())
     }
 
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
     /// blow-up the recording keeps everything sampled before it.
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
         self.steps_with(steps, true, |sim| {
-            sim.record_if_due();
+            sim.record_if_due()?;
             sim.record_counter += 1;
+            Ok(())
         })
     }
 
-    /// Close a recording: sample the final state if it falls on the recording grid.
-    pub fn end_recording(&mut self) {
+    /// Close a recording: sample the final state if it falls on the recording grid. A
+    /// non-finite sample is not kept and gives [`BeltError::Diverged`].
+    pub fn end_recording(&mut self) -> BeltResult<()> {
         if self.record_counter.is_multiple_of(self.record_every) {
             self.evaluate(Effects::ALL);
-            self.record_if_due();
+            self.record_if_due()?;
+        }
+        Ok(())
+    }
+
+    /// The divergence error for a sample whose recorded `column` (a [`Recording`] field
+    /// name) is not finite.
+    fn non_finite_sample(&self, column: &str) -> BeltError {
+        let state_error = self.locate_non_finite();
+        if let BeltError::Diverged { ref quantity, .. } = state_error {
+            if quantity != "energy" {
+                return state_error;
+            }
+        }
+        BeltError::Diverged {
+            time: self.state.time,
+            step: self.state.step,
+            quantity: format!("recorded {column}"),
+            location: "the sample (the state is finite but a derived value overflows)".to_string(),
         }
     }
 
@@ -1020,7 +1055,7 @@ impl Simulation {
         let steps = (duration / self.model.dt).round() as u64;
         self.begin_recording(channels, every, usize::MAX);
         self.advance(steps)?;
-        self.end_recording();
+        self.end_recording()?;
         Ok(&self.recording)
     }
 
@@ -1075,10 +1110,9 @@ impl Simulation {
         for (k, d) in m.idlers.iter().enumerate() {
             let w = s.idler_omega[k] + half * sc.idler_torque[k] / d.inertia;
             e.kinetic += 0.5 * d.inertia * w * w;
-            let c = &sc.idler_contacts[k];
-            if c.active {
-                e.contact += 0.5 * d.contact_stiffness * c.penetration * c.penetration;
-            }
+            // Every part pressing on the roll, as the force counts them (not only the
+            // deepest).
+            e.contact += sc.idler_contacts[k].energy;
         }
         e
     }
@@ -1235,6 +1269,7 @@ impl Simulation {
             residual: f64::INFINITY,
             converged: false,
             resets: 0,
+            interrupted: false,
         };
         for &scale in scales {
             self.model = Model::compile(&soften_contact(scene, scale))?;
@@ -1310,6 +1345,15 @@ impl Simulation {
         let mut resets = 0;
         let mut residual = f64::INFINITY;
         for k in 0..options.max_steps {
+            if crate::interrupt::check(self.model.nodes as u64).is_err() {
+                return Ok(StabiliseReport {
+                    steps: k,
+                    residual,
+                    converged: false,
+                    resets,
+                    interrupted: true,
+                });
+            }
             self.evaluate(effects);
             if k.is_multiple_of(32) {
                 residual = self.residual();
@@ -1319,6 +1363,7 @@ impl Simulation {
                         residual,
                         converged: true,
                         resets,
+                        interrupted: false,
                     });
                 }
             }
@@ -1335,6 +1380,7 @@ impl Simulation {
             residual,
             converged: false,
             resets,
+            interrupted: false,
         })
     }
 
@@ -1392,6 +1438,15 @@ impl Simulation {
         let mut residual = f64::INFINITY;
         let mut result = Ok(());
         for k in 0..options.max_steps {
+            if crate::interrupt::check(self.model.nodes as u64).is_err() {
+                return Ok(StabiliseReport {
+                    steps: k,
+                    residual,
+                    converged: false,
+                    resets,
+                    interrupted: true,
+                });
+            }
             self.evaluate(effects);
             if k.is_multiple_of(32) {
                 residual = self.residual();
@@ -1402,6 +1457,7 @@ impl Simulation {
                         residual,
                         converged: true,
                         resets,
+                        interrupted: false,
                     });
                 }
             }
@@ -1438,6 +1494,7 @@ impl Simulation {
             residual,
             converged: false,
             resets,
+            interrupted: false,
         })
     }
 
