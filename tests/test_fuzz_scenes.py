@@ -303,9 +303,11 @@ def test_overflowing_drive_work_stops_the_run():
     scene["pulleys"][1]["drive"] = {"time": [0.0], "torque": [1e300]}
     sim = _beltrs.Simulation(scene)
     sim.begin_recording(1, True, True, True, 1000)
-    with pytest.raises(DivergenceError, match=r"step 1\): work done of the drives"):
+    # The first sample already holds an infinite kinetic energy of the driven pulley (its
+    # half-step speed is about 1e300 rad/s): it is not kept (only finite rows are).
+    with pytest.raises(DivergenceError, match=r"step 0\): kinetic energy of pulley pulleys\[1\]"):
         sim.advance(300)
-    assert len(sim.recording()["time"]) == 1
+    assert len(sim.recording()["time"]) == 0
 
 
 def test_absurdly_soft_belt_does_not_ask_for_an_endless_continuation():

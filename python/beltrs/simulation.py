@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import numbers
 import os
 import signal
@@ -9,7 +10,7 @@ import threading
 import time as _time
 import warnings
 from dataclasses import replace
-from typing import Any, Optional, Union
+from typing import Any, Iterator, Optional, Union
 
 import numpy as np
 
@@ -156,9 +157,10 @@ class Simulation:
         self.last_result: Optional[Result] = None
         self._busy = threading.Lock()
 
-    def _exclusive(self, what: str) -> Any:
-        """The lock that keeps run, stabilise and step from overlapping (from different
-        threads): a second one raises a BeltrsError at once and changes nothing."""
+    @contextlib.contextmanager
+    def _exclusive(self, what: str) -> Iterator[None]:
+        """Keeps run, stabilise and step from overlapping (from different threads): a
+        second one raises a BeltrsError at once and changes nothing."""
         busy = self.__dict__.setdefault("_busy", threading.Lock())
         if not busy.acquire(blocking=False):
             raise _beltrs.BeltrsError(
@@ -166,7 +168,10 @@ class Simulation:
                 "(in another thread); wait for it to return. Reading the state, saving a checkpoint "
                 "or changing parameters from another thread is allowed"
             )
-        return busy
+        try:
+            yield
+        finally:
+            busy.release()
 
     # --- model facts -------------------------------------------------------------------
     @property
@@ -392,10 +397,10 @@ class Simulation:
         per_sample = self.sample_bytes(tension, node_position, node_velocity)
         if max_samples is None:
             max_memory = _real("max_memory", max_memory, "must be a finite number > 0 (bytes)", lambda v: v > 0)
-            max_samples = int(max_memory // per_sample)
+            max_samples = int(min(max_memory // per_sample, _MAX_STEPS))
             if max_samples < 2:
                 raise _beltrs.SceneError(
-                    f"max_memory = {max_memory}: must hold at least 2 samples of {per_sample} bytes"
+                    f"max_memory = {max_memory:g}: must hold at least 2 samples of {per_sample} bytes"
                 )
         elif isinstance(max_samples, numbers.Integral) and not isinstance(max_samples, bool) and max_samples < 2:
             raise _beltrs.SceneError(f"max_samples = {max_samples}: must be ≥ 2")

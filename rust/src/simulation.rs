@@ -997,9 +997,9 @@ impl Simulation {
         // A finite state can still give non-finite derived values (energies of nodes
         // 10^157 m away, forces of an absurd gravity): the run stops, and the recording
         // keeps only finite rows.
-        if let Some(column) = self.recording.last_row_non_finite() {
+        if let Some((quantity, part)) = self.recording.last_row_non_finite() {
             self.recording.pop_row();
-            return Err(self.non_finite_sample(column));
+            return Err(self.non_finite_sample(quantity, part));
         }
         Ok(())
     }
@@ -1024,20 +1024,64 @@ impl Simulation {
         Ok(())
     }
 
-    /// The divergence error for a sample whose recorded `column` (a [`Recording`] field
-    /// name) is not finite.
-    fn non_finite_sample(&self, column: &str) -> BeltError {
+    /// The divergence error for a sample whose recorded `quantity` of `part` is not
+    /// finite: the first non-finite state value if there is one, else the first non-finite
+    /// node force (a finite state with forces that overflow), else the recorded value.
+    fn non_finite_sample(&self, quantity: String, part: crate::record::Part) -> BeltError {
+        use crate::record::Part;
         let state_error = self.locate_non_finite();
         if let BeltError::Diverged { ref quantity, .. } = state_error {
             if quantity != "energy" {
                 return state_error;
             }
         }
+        let (quantity, location) = match self
+            .scratch
+            .force
+            .iter()
+            .enumerate()
+            .find(|(_, f)| !(f.x.is_finite() && f.y.is_finite()))
+        {
+            Some((i, f)) => (
+                format!("force {}", if f.x.is_finite() { "y" } else { "x" }),
+                format!("node {i}"),
+            ),
+            None => {
+                let s = &self.state;
+                let argmax = |key: &dyn Fn(usize) -> f64| {
+                    (0..self.model.nodes).max_by(|&a, &b| key(a).total_cmp(&key(b)))
+                };
+                // An energy overflows where its density is largest: name that node.
+                let half = 0.5 * self.model.dt;
+                let spinning = self.model.pulleys.iter().enumerate().position(|(j, p)| {
+                    let w = s.pulley_omega[j] + half * self.scratch.pulley_torque(j) / p.inertia;
+                    !(0.5 * p.inertia * w * w).is_finite()
+                });
+                let part = match quantity.as_str() {
+                    "kinetic energy" if spinning.is_some() => spinning.map_or(part, Part::Pulley),
+                    "kinetic energy" => argmax(&|i| s.velocity[i].norm()).map_or(part, Part::Node),
+                    "gravity energy" => argmax(&|i| s.position[i].y.abs()).map_or(part, Part::Node),
+                    "strain energy" => {
+                        argmax(&|i| (s.position[(i + 1) % self.model.nodes] - s.position[i]).norm())
+                            .map_or(part, Part::Element)
+                    }
+                    _ => part,
+                };
+                let location = match part {
+                    Part::Node(i) => format!("node {i}"),
+                    Part::Element(i) => format!("element {i}"),
+                    Part::Pulley(j) => format!("pulley {}", self.model.pulleys[j].name),
+                    Part::Idler(k) => format!("idler {k}"),
+                    Part::Model => "the model".to_string(),
+                };
+                (quantity, location)
+            }
+        };
         BeltError::Diverged {
             time: self.state.time,
             step: self.state.step,
-            quantity: format!("recorded {column}"),
-            location: "the sample (the state is finite but a derived value overflows)".to_string(),
+            quantity,
+            location,
         }
     }
 
