@@ -96,27 +96,27 @@ print("end", flush=True)
 
 
 def test_ctrl_c_stops_compile_stabilise_step_and_run_within_a_fraction_of_a_second():
-    proc = subprocess.Popen(
-        [sys.executable, "-c", CTRL_C_CHILD], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-    )
     outcomes, latencies = {}, {}
-    try:
-        while True:
-            line = proc.stdout.readline()
-            assert line, proc.stderr.read()
-            if line.startswith("end"):
-                break
-            phase = line.split()[1]
-            time.sleep(0.5)
-            sent = time.time()
-            proc.send_signal(signal.SIGINT)
-            done = json.loads(proc.stdout.readline())
-            assert done["phase"] == phase
-            outcomes[phase] = done["outcome"]
-            latencies[phase] = done["t"] - sent
-        proc.wait(timeout=20)
-    finally:
-        proc.kill()
+    with subprocess.Popen(
+        [sys.executable, "-c", CTRL_C_CHILD], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    ) as proc:
+        try:
+            while True:
+                line = proc.stdout.readline()
+                assert line, proc.stderr.read()
+                if line.startswith("end"):
+                    break
+                phase = line.split()[1]
+                time.sleep(0.5)
+                sent = time.time()
+                proc.send_signal(signal.SIGINT)
+                done = json.loads(proc.stdout.readline())
+                assert done["phase"] == phase
+                outcomes[phase] = done["outcome"]
+                latencies[phase] = done["t"] - sent
+            proc.wait(timeout=20)
+        finally:
+            proc.kill()
     assert outcomes == {
         "compile": "KeyboardInterrupt",
         "stabilise": "interrupted",
@@ -273,19 +273,22 @@ def test_a_second_concurrent_run_is_refused_and_the_first_loses_nothing():
     errors, results = [], []
 
     def first():
-        results.append(sim.run(500_000 * sim.dt, record_every=1000, progress=False))
+        results.append(sim.run(3_000_000 * sim.dt, record_every=1000, progress=False))
 
     t = threading.Thread(target=first)
     t.start()
-    time.sleep(0.2)
+    while sim.time == 0.0:
+        time.sleep(0.01)
     for call in (lambda: sim.run(0.01, progress=False), lambda: sim.step(5), lambda: sim.stabilise()):
         try:
             call()
         except beltrs.BeltrsError as err:
             errors.append(str(err))
+    still_running = t.is_alive()
     t.join()
-    assert len(errors) == 3 and all("in progress on this simulation" in e for e in errors)
-    assert len(results[0]) == 501 and not results[0].interrupted
+    assert still_running
+    assert len(errors) == 3 and all("in progress on this simulation" in e for e in errors), errors
+    assert len(results[0]) == 3001 and not results[0].interrupted
 
 
 # --- 6. non-finite results --------------------------------------------------------------
@@ -413,27 +416,36 @@ def _energy_drift(scene: Scene, steps: int) -> tuple[float, float, float]:
     return float(np.ptp(total)), float(res.energy_of("contact").max()), float(res.energy_of("kinetic").max())
 
 
+# Central differences conserve a shadow energy: the recorded one wanders by O((ω·Δt)²). At
+# 5 % of the stable step that is well under 1 % of the energy that changes hands, while a
+# contact energy that misses part of the force is off by tens of per cent.
+
+
 def test_pulley_contact_energy_balances_the_forces():
-    # No damping, friction or drive: the recorded total may only wander by the
-    # integration error of central differences (second order, here well under 1 %).
+    # No damping, friction or drive: the recorded total only wanders by the integration error.
     scene = tiny_scene(damping_ratio=0.0, length=(4.0 + math.pi) * 0.99)
-    drift, contact, kinetic = _energy_drift(scene, 20_000)
-    assert contact > 0 and kinetic > 0
+    scene.solver = Solver(time_step_fraction=0.05)
+    drift, contact, kinetic = _energy_drift(scene, 360_000)
+    assert contact > 10 and kinetic > 10
     assert drift < 0.01 * max(contact, kinetic), (drift, contact, kinetic)
 
 
 def test_idler_contact_energy_counts_every_element_on_the_roll():
-    # A large roll pushed 5 cm into a strand of short elements: several elements press on
-    # it at once. Counting only the deepest made the recorded total swing by about as much
-    # as the contact energy itself.
-    scene = tiny_scene(damping_ratio=0.0, elements=160, length=(4.0 + math.pi))
+    # A 0.2 m roll pushed 2 cm into a strand of 11 cm elements: two to three elements press
+    # on it at once. Counting only the deepest one made the recorded total swing by half of
+    # the contact energy (199 J of 400 J here).
+    scene = tiny_scene(damping_ratio=0.0, elements=64, length=4.0 + math.pi)
     scene.gravity = 0.0
-    scene.idlers = [Idler(center=(1.0, -0.5 - 0.4 + 0.05), radius=0.4, contact_stiffness=2e6)]
-    sim = beltrs.Simulation(scene)
-    forces = sim.forces()
-    assert np.count_nonzero(np.linalg.norm(forces, axis=1)) >= 4  # several nodes pressed
-    drift, contact, kinetic = _energy_drift(scene, 20_000)
-    assert contact > 0 and kinetic > 0
+    scene.idlers = [Idler(center=(1.0, -0.5 - 0.2 + 0.02), radius=0.2, contact_stiffness=1e6)]
+    scene.solver = Solver(time_step_fraction=0.05)
+    x = beltrs.Simulation(scene).state()["node_position"]
+    a, b = x, np.roll(x, -1, axis=0)
+    c = np.array(scene.idlers[0].center)
+    t = np.clip(np.einsum("ij,ij->i", c - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
+    distance = np.linalg.norm(a + t[:, None] * (b - a) - c, axis=1)
+    assert np.count_nonzero(distance < 0.2) >= 2  # several elements press on the roll
+    drift, contact, kinetic = _energy_drift(scene, 100_000)
+    assert contact > 100 and kinetic > 100
     assert drift < 0.01 * max(contact, kinetic), (drift, contact, kinetic)
 
 
@@ -472,7 +484,7 @@ def test_peak_memory_of_a_run_stays_within_max_memory_plus_a_constant():
     )
     held, peak, after, recorder = map(int, out.stdout.split())
     bound = 128 * 2**20
-    assert held > 0.9 * bound  # the recording filled its bound (and was decimated)
+    assert held > 0.5 * bound  # the recording reached its bound (and was decimated)
     # The stated constant: 16 MiB (Python objects, NumPy headers, allocator slack).
     slack = 16 * 2**20
     assert peak <= bound + slack, (peak, bound)

@@ -587,7 +587,7 @@ impl Model {
             }
             None => self.scene.solver.time_step_fraction * limit,
         };
-        if !(self.dt >= MIN_TIME_STEP) {
+        if !(self.dt >= MIN_TIME_STEP && self.dt.is_finite()) {
             let (field, value) = match self.scene.solver.time_step {
                 Some(dt) => ("solver.time_step", dt),
                 None => (
@@ -599,7 +599,7 @@ impl Model {
                 field,
                 value,
                 format!(
-                    "gives a time step of {:e} s (stability limit {limit:e} s, set by {}), below the floor of {MIN_TIME_STEP:e} s: one second would take over 10^9 steps; a stiffness, damping or mass is out of proportion (check the units)",
+                    "gives a time step of {:e} s (stability limit {limit:e} s, set by {}), below the floor of {MIN_TIME_STEP:e} s or not finite: one second would take over 10^9 steps; a stiffness, damping or mass is out of proportion (check the units)",
                     self.dt, self.dt_cause
                 ),
             ));

@@ -3,6 +3,7 @@
 
 mod scene_dict;
 mod scene_out;
+mod shared;
 
 use crate::error::{BeltError, BeltResult};
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
@@ -12,10 +13,11 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use shared::{Guard, Shared};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError, TryLockError};
+use std::sync::{Arc, Mutex, PoisonError};
 
 create_exception!(
     _beltrs,
@@ -141,39 +143,28 @@ fn array<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<
 
 /// The engine: a compiled model, its state and the current recording.
 ///
-/// Thread safety: the simulation sits behind a mutex. A call from a second thread waits
-/// (without the GIL) until the running call returns, so concurrent calls run one after the
-/// other and none fails or loses anything; `Simulation.run` in Python calls the core in
+/// Thread safety: the simulation sits behind a fair lock ([`shared`]). A call from a
+/// second thread waits (without the GIL) for its turn, so concurrent calls run one after
+/// the other and none fails or loses anything; `Simulation.run` in Python calls the core in
 /// short chunks, so e.g. a checkpoint saved from another thread lands between two chunks.
 #[pyclass(name = "Simulation", module = "beltrs._beltrs")]
 struct PySimulation {
-    inner: Mutex<Simulation>,
+    inner: Shared<Simulation>,
     interrupted: AtomicBool,
 }
 
 impl PySimulation {
     fn wrap(inner: Simulation) -> Self {
         PySimulation {
-            inner: Mutex::new(inner),
+            inner: Shared::new(inner),
             interrupted: AtomicBool::new(false),
         }
     }
 
-    /// The simulation, waiting without the GIL while another thread uses it. A panic
-    /// that poisoned the lock left a state the panic guard already reported; it stays
-    /// usable.
-    fn lock(&self, py: Python<'_>) -> MutexGuard<'_, Simulation> {
-        loop {
-            match self.inner.try_lock() {
-                Ok(g) => return g,
-                Err(TryLockError::Poisoned(p)) => return p.into_inner(),
-                Err(TryLockError::WouldBlock) => {
-                    // Wait for the holder without the GIL (it may need the GIL to finish),
-                    // then try again with it.
-                    py.detach(|| drop(self.inner.lock()));
-                }
-            }
-        }
+    /// The simulation, after any call already running or waiting on it from another
+    /// thread.
+    fn lock(&self, py: Python<'_>) -> Guard<'_, Simulation> {
+        self.inner.lock(py)
     }
 }
 
