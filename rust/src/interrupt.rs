@@ -57,9 +57,7 @@ pub fn with_hook<T>(poll: impl FnMut() -> bool + 'static, f: impl FnOnce() -> T)
 pub fn check(work: u64) -> BeltResult<()> {
     let due = HOOK.with(|h| {
         let mut h = h.borrow_mut();
-        let Some(hook) = h.as_mut() else {
-            return None;
-        };
+        let hook = h.as_mut()?;
         hook.work += work;
         if hook.work < WORK_PER_CLOCK_READ {
             return None;
