@@ -42,6 +42,10 @@ made in turn from the main thread; timings use ``time.perf_counter``):
 8. Wall time against simulated time for a 1 km conveyor start-up (1e4 nodes, drive torque
    ramped over 10 s; 1 s with --quick).
 9. Peak memory of the process (``resource.getrusage`` ru_maxrss).
+10. Friction cost (issue 11): case H loops of 1250 to 1e4 elements with pulley friction,
+   unrelaxed, per-stage profile: ns per contact node of the pulley-contact and friction
+   stages against ns per node of all other stages (a free node), and their ratio
+   (target <= 5x). ``--friction-only`` runs just this section.
 
 Tables give the median wall time, the spread of the repeats about it (fastest/slowest, %)
 and, for throughput, the rate of the fastest repeat ("best"), which is the steadier figure
@@ -63,6 +67,8 @@ import time
 from collections.abc import Callable
 from contextlib import suppress
 from typing import Any
+
+import numpy as np
 
 import beltrs
 from beltrs import Belt, Drive, Friction, Pulley, Scene, Simulation, Takeup
@@ -409,6 +415,86 @@ def bench_numpy(repeats: int) -> list[dict[str, Any]]:
     return out
 
 
+
+def contact_nodes(sim: Simulation, scene: Scene) -> int:
+    """Nodes touching a pulley now: inside its radius (the penalty acts on penetration)."""
+    st = sim.state()
+    x = st["node_position"]
+    count = 0
+    for j, p in enumerate(scene.pulleys):
+        c = np.asarray(p.center, dtype=float)
+        if p.takeup is not None:
+            c = c + st["takeup_travel"][j] * np.asarray(p.takeup.direction, dtype=float)
+        count += int(np.count_nonzero(np.hypot(*(x - c).T) < p.radius))
+    return count
+
+
+def bench_friction_cost(sizes: list[int], steps: int) -> list[dict[str, Any]]:
+    """Issue 11: the cost of a contact node with friction against a free node, in one run.
+
+    Case H loops of ``sizes`` elements with pulley friction (mu_s 0.3, mu_k 0.25), stepped
+    unrelaxed from their placement (the settling belt slips on both pulleys: the friction
+    solve's worst case). Per-stage profile over ``steps`` steps: the pulley-contact and
+    pulley-friction stages per contact node, every other stage per node (a free node's
+    cost), and the ratio (free + contact + friction)/free for a node in contact."""
+    out = []
+    for n in sizes:
+        scene = beltrs.scenes.hustrulid_loop(n, friction=FRICTION)
+        sim = Simulation(scene)
+        sim.step(200)  # into contact and slipping, untimed
+        # Three profiled rounds; each stage's fastest round (the machine is shared: the
+        # minimum is the cost without preemption).
+        rounds, counts = [], []
+        chunk = max(1, steps // 10)
+        for _ in range(3):
+            sim.set_profiling(True)  # zeroes the counters
+            for _ in range(10):
+                sim.step(chunk)
+                counts.append(contact_nodes(sim, scene))
+            rounds.append(sim.profile())
+        sim.set_profiling(False)
+        prof = {k: min(p[k] for p in rounds) for k in rounds[0]}
+        done = 10 * chunk
+        cn = statistics.mean(counts)
+        contact = prof.get("pulley_contact", 0.0)
+        friction = prof.get("pulley_friction", 0.0)
+        free = sum(prof.values()) - contact - friction
+        free_ns = 1e9 * free / (done * sim.nodes)
+        contact_ns = 1e9 * contact / (done * cn)
+        friction_ns = 1e9 * friction / (done * cn)
+        out.append(
+            {
+                "nodes": sim.nodes,
+                "contact_nodes": cn,
+                "steps": done,
+                "free_ns": free_ns,
+                "contact_ns": contact_ns,
+                "friction_ns": friction_ns,
+                "ratio": (free_ns + contact_ns + friction_ns) / free_ns,
+            }
+        )
+    return out
+
+def print_friction_cost(rows: list[dict[str, Any]]) -> None:
+    print(
+        table(
+            ["nodes", "contact nodes", "free node ns", "contact ns/c.node", "friction ns/c.node", "c.node/free"],
+            [
+                [
+                    str(r["nodes"]),
+                    f"{r['contact_nodes']:.0f}",
+                    f"{r['free_ns']:.1f}",
+                    f"{r['contact_ns']:.1f}",
+                    f"{r['friction_ns']:.1f}",
+                    f"{r['ratio']:.2f}x",
+                ]
+                for r in rows
+            ],
+        )
+    )
+    print("target (issue 11): a contact node with friction costs <= 5x a free node")
+
+
 # --- report -------------------------------------------------------------------------------
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -422,6 +508,11 @@ def main(argv: list[str] | None = None) -> int:
         metavar="S",
         help="wall budget for stabilising the long loop, s (default none, 60 with --quick)",
     )
+    ap.add_argument(
+        "--friction-only",
+        action="store_true",
+        help="run only section 10 (friction cost per contact node) and exit",
+    )
     args = ap.parse_args(argv)
     repeats = args.repeats if args.repeats is not None else (3 if args.quick else 5)
     if repeats < 1:
@@ -430,6 +521,13 @@ def main(argv: list[str] | None = None) -> int:
     h_steps = 5000 if args.quick else 20000
     long_steps = 500 if args.quick else 3000
     profile_steps = 5000
+
+    friction_sizes = [1250, 2500, 5000, 10_000]
+    friction_steps = 500 if args.quick else 2000
+    if args.friction_only:
+        heading("10. Friction cost per contact node (case H loops with friction, unrelaxed)")
+        print_friction_cost(bench_friction_cost(friction_sizes, friction_steps))
+        return 0
 
     started = time.perf_counter()
     meta = {
@@ -604,6 +702,10 @@ def main(argv: list[str] | None = None) -> int:
                 [[f"{r['time']:.1f}", f"{r['wall']:.2f}", f"{r['wall'] / r['time']:.2f}", f"{r['belt_speed']:.3f}"]
                  for r in start["rows"]]))
 
+    heading("10. Friction cost per contact node (case H loops with friction, unrelaxed)")
+    fric = bench_friction_cost(friction_sizes, friction_steps)
+    print_friction_cost(fric)
+
     heading("9. Peak memory")
     mem = peak_memory_mb()
     print(f"peak resident memory of this process (getrusage ru_maxrss): {mem:.0f} MB")
@@ -668,6 +770,7 @@ def main(argv: list[str] | None = None) -> int:
             "numpy": npr,
             "scaling": scal,
             "startup_1km": start,
+            "friction_cost": fric,
             "peak_memory_mb": mem,
         }
         with open(args.json, "w", encoding="utf-8") as fh:

@@ -1,6 +1,6 @@
 """Scenes used by the benchmark and the accuracy study (not part of the package).
 
-- :func:`kubas_drive`: case K (reference-cases.md, Kubas seed 003 §4) as far as the node
+- :func:`kubas_drive`: case K (docs/reference-cases.md, Kubas 2014 §4) as far as the node
   model can carry it: a two-pulley poly-V drive with stick-force friction (the Kubas
   creep-rate friction and nonlinear contact are not implemented yet).
 - :func:`conveyor`: a long horizontal conveyor with a head drive, a tail gravity takeup and

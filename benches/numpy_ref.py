@@ -15,11 +15,14 @@ be stepped from the same point and compared (``tests/test_numpy_ref.py``).
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
+
+import beltrs
 
 
 @dataclass
@@ -78,7 +81,15 @@ class NumpyBelt:
         for j, p in enumerate(scene.pulleys):
             if p.friction is not None or p.drive is not None or p.brake is not None:
                 raise ValueError(f"pulleys[{j}]: the NumPy reference has no friction, drive or brake")
-            q = NumpyPulley(np.array(p.center, dtype=float), p.radius, p.contact_stiffness, p.contact_damping)
+            # The engine's rule (docs/belt-drives.md): absolute if given, else 2 zeta sqrt(k m).
+            if p.contact_damping is not None:
+                damping = p.contact_damping
+            else:
+                zeta = p.contact_damping_ratio
+                if zeta is None:
+                    zeta = beltrs.DEFAULT_CONTACT_DAMPING_RATIO
+                damping = 2.0 * zeta * math.sqrt(p.contact_stiffness * m_el[0])
+            q = NumpyPulley(np.array(p.center, dtype=float), p.radius, p.contact_stiffness, damping)
             if p.takeup is not None:
                 d = np.array(p.takeup.direction, dtype=float)
                 d /= np.hypot(*d)

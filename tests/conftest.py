@@ -6,6 +6,7 @@ examples when hunting bugs: HYPOTHESIS_PROFILE=explore python -m pytest tests/te
 """
 
 import os
+import signal
 
 import pytest
 from hypothesis import settings
@@ -15,6 +16,11 @@ import beltrs
 settings.register_profile("ci", derandomize=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+# The Ctrl-C tests need Python's SIGINT handler. A shell starts a background job (`bash .ci/run &`)
+# with SIGINT ignored, and Python then leaves it ignored, so those tests would see no Ctrl-C.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def stabilised(elements: int = 89, tolerance: float = 1e-7, **kw):

@@ -4,6 +4,7 @@ import math
 
 import pytest
 
+import beltrs
 from beltrs import din22101
 
 
@@ -42,5 +43,5 @@ def test_head_drive_tensions():
 def test_bad_input_names_field_and_value(field, value):
     kw = dict(carry_length=100, return_length=100, belt_mass=10, material_mass=20, speed=2)
     kw[field] = value
-    with pytest.raises(ValueError, match=rf"{field} = {value!r}"):
+    with pytest.raises(beltrs.SceneError, match=rf"{field} = {value!r}"):
         din22101.resistances(**kw)

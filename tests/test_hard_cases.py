@@ -253,9 +253,16 @@ def test_impulsive_torque(torque, duration):
         assert not gross.any()
         assert carried.max() < 0.25 * capacity.max()
     else:
-        # 4 MN·m: the drive slips over its whole arc and then carries exactly µk·ΣN·R.
+        # 4 MN·m: the drive slips over its whole arc and, while the torque acts (the pulley
+        # surface outrunning the whole belt), carries exactly µk·ΣN·R. Afterwards the belt
+        # catches up and rings, and a fully slipping arc can slide both ways at once
+        # (with the default contact damping one sample at 2.76 s has 3 nodes one way and 2
+        # the other): it then carries less, never more.
         assert gross.any()
-        np.testing.assert_allclose(carried[gross], radius * mu_k * res.normal_force[gross, 0], rtol=1e-9)
+        during = gross & (res.time < res.time[0] + duration)
+        assert during.sum() > 10
+        np.testing.assert_allclose(carried[during], radius * mu_k * res.normal_force[during, 0], rtol=1e-9)
+        assert np.all(carried[gross] <= radius * mu_k * res.normal_force[gross, 0] * (1 + 1e-9))
         # While the torque acts the pulley surface outruns the belt.
         k = np.searchsorted(res.time, res.time[0] + duration) - 1
         v = res.node_velocity[k]

@@ -424,6 +424,8 @@ def _energy_drift(scene: Scene, steps: int) -> tuple[float, float, float]:
 def test_pulley_contact_energy_balances_the_forces():
     # No damping, friction or drive: the recorded total only wanders by the integration error.
     scene = tiny_scene(damping_ratio=0.0, length=(4.0 + math.pi) * 0.99)
+    for p in scene.pulleys:
+        p.contact_damping = 0.0
     scene.solver = Solver(time_step_fraction=0.05)
     drift, contact, kinetic = _energy_drift(scene, 360_000)
     assert contact > 10 and kinetic > 10
@@ -436,7 +438,9 @@ def test_idler_contact_energy_counts_every_element_on_the_roll():
     # the contact energy (199 J of 400 J here).
     scene = tiny_scene(damping_ratio=0.0, elements=64, length=4.0 + math.pi)
     scene.gravity = 0.0
-    scene.idlers = [Idler(center=(1.0, -0.5 - 0.2 + 0.02), radius=0.2, contact_stiffness=1e6)]
+    scene.idlers = [Idler(center=(1.0, -0.5 - 0.2 + 0.02), radius=0.2, contact_stiffness=1e6, contact_damping=0.0)]
+    for p in scene.pulleys:
+        p.contact_damping = 0.0
     scene.solver = Solver(time_step_fraction=0.05)
     x = beltrs.Simulation(scene).state()["node_position"]
     a, b = x, np.roll(x, -1, axis=0)

@@ -68,7 +68,9 @@ def test_round_trip_compiles_and_runs_bit_for_bit(tmp_path):
     scene.solver = Solver()  # automatic step
     path = tmp_path / "s.toml"
     scene.save(path)
-    a, b = beltrs.Simulation(scene), beltrs.Simulation(beltrs.load_scene(path))
+    # Pulley 1 has friction on contact damped by -0.0 (an awkward value for the writer).
+    with pytest.warns(beltrs.UndampedContactWarning):
+        a, b = beltrs.Simulation(scene), beltrs.Simulation(beltrs.load_scene(path))
     assert (a.dt, a.dt_limit, a.stages, a.nodes) == (b.dt, b.dt_limit, b.stages, b.nodes)
     assert np.array_equal(a.rest_length, b.rest_length) and np.array_equal(a.node_mass, b.node_mass)
     ra, rb = a.run(300 * a.dt, record_every=1), b.run(300 * b.dt, record_every=1)
@@ -77,8 +79,9 @@ def test_round_trip_compiles_and_runs_bit_for_bit(tmp_path):
         x, y = getattr(ra, f.name), getattr(rb, f.name)
         if isinstance(x, np.ndarray):
             assert np.array_equal(x, y), f.name  # bit for bit: same scene, same arithmetic
-    # The run did something: the drive turned the upper pulley.
-    assert abs(ra.pulley_speed[-1, 0]) > 0
+    # The run did something: the drive turned the upper pulley (its brake, ramping up,
+    # stops it again within the 300 steps).
+    assert np.abs(ra.pulley_speed[:, 0]).max() > 0
 
 
 def test_to_dict_from_dict_symmetry():

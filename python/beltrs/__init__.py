@@ -5,9 +5,10 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, scenes, study
+from . import analysis, analytic, conveyor, scenes, statics, study
+from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
-from ._beltrs import __version__
+from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
 from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .result import Result
@@ -16,8 +17,10 @@ from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 
 __all__ = [
+    "DEFAULT_CONTACT_DAMPING_RATIO",
     "Belt",
     "BeltrsError",
+    "BeltrsWarning",
     "Brake",
     "CheckpointError",
     "CheckpointWarning",
@@ -37,10 +40,13 @@ __all__ = [
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "UndampedContactWarning",
     "__version__",
     "analysis",
     "analytic",
+    "conveyor",
     "load_scene",
     "scenes",
+    "statics",
     "study",
 ]

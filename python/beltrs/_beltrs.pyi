@@ -5,6 +5,7 @@ from typing import Any, Optional
 import numpy as np
 
 __version__: str
+DEFAULT_CONTACT_DAMPING_RATIO: float
 
 class BeltrsError(Exception): ...
 class SceneError(BeltrsError): ...

@@ -172,8 +172,13 @@ def hustrulid_wave_speed(
     distance ``gap`` × ``rest_length`` (m) over the arrival-time difference.
 
     Args:
-        time: ``[n]`` s. tension: ``[n, E]`` N. node_position: ``[E, 2]`` m, any recorded
-        instant before the pulse has moved the belt much (the first is fine).
+        time: ``[n]`` recorded times, s.
+        tension: ``[n, E]`` recorded tensions, N.
+        node_position: ``[E, 2]`` node positions, m, at any recorded instant before the
+            pulse has moved the belt much (the first is fine).
+        rest_length: unstretched element length, m.
+        side: strand at x = ``side`` x 5 m, +1 or -1. Default 1.
+        gap: elements between the two read-outs. Default 10.
     """
     x = np.asarray(node_position, dtype=float)
     mid = 0.5 * (x + np.roll(x, -1, axis=0))

@@ -49,11 +49,13 @@ from typing import Callable, Sequence
 import numpy as np
 
 __all__ = [
+    "CreepDrive",
     "TakeupStatics",
     "TakeupStepResponse",
     "axial_wave_speed",
     "two_pulley_takeup_statics",
     "takeup_step_response",
+    "two_pulley_creep",
 ]
 
 
@@ -513,4 +515,194 @@ unchanged, i.e. ``step = 3000/30600``), which gives -0.2234 m exactly and
         static_shift=static_shift,
         frequency_thesis=frequency_thesis,
         frequency_loop=frequency_loop,
+    )
+
+
+# --------------------------------------------------------------------------
+# Two-pulley belt drive: Euler-Eytelwein + Grashof creep (docs/belt-drives.md)
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class CreepDrive:
+    """Exact steady state of a two-pulley belt drive by creep theory (``docs/belt-drives.md``).
+
+    Attributes:
+        tight_tension: T1, tension of the tight span (entering the drive pulley) [N].
+        slack_tension: T2, tension of the slack span (leaving the drive pulley) [N].
+        drive_speed: angular speed of the drive pulley, as given [rad/s].
+        driven_speed: angular speed of the driven pulley [rad/s].
+        creep: speed loss ``1 - (omega2 r2)/(omega1 r1) = (T1 - T2)/(EA + T1)`` [-].
+        slip_angle: angle of the slip arc on each pulley (the same on both) [rad].
+        slip_arc: length of the slip arc on the drive and on the driven pulley,
+            ``(r1 phi, r2 phi)`` [m].
+        wrap_angles: wrap angles of the drive and the driven pulley [rad].
+        adhesion_angles: wrap minus slip angle on each pulley [rad].
+        tight_speed: belt speed in the tight span [m/s].
+        slack_speed: belt speed in the slack span [m/s].
+        mass_flow: belt mass passing any section per second, ``rho v/(1 + T/EA)`` [kg/s].
+        centrifugal: centrifugal tension ``Q v`` in the tight and the slack span [N].
+    """
+
+    tight_tension: float
+    slack_tension: float
+    drive_speed: float
+    driven_speed: float
+    creep: float
+    slip_angle: float
+    slip_arc: tuple[float, float]
+    wrap_angles: tuple[float, float]
+    adhesion_angles: tuple[float, float]
+    tight_speed: float
+    slack_speed: float
+    mass_flow: float
+    centrifugal: tuple[float, float]
+
+
+def _check_positive(name: str, value: float) -> None:
+    if not (math.isfinite(value) and value > 0.0):
+        raise ValueError(f"{name} = {value!r}: must be finite and > 0")
+
+
+def two_pulley_creep(
+    *,
+    drive_radius: float,
+    driven_radius: float,
+    centre_distance: float,
+    axial_stiffness: float,
+    mass_per_length: float,
+    pretension: float,
+    mu: float,
+    drive_speed: float,
+    load_torque: float,
+    quadrature: int = 64,
+) -> CreepDrive:
+    """Steady running of an open two-pulley belt drive by creep theory (exact for the model).
+
+    The belt is a perfectly flexible, linear elastic string (``T = EA * strain``, strain on
+    the unstretched length), without bending stiffness or gravity, on rigid pulleys with
+    Coulomb friction ``mu``. The drive pulley turns at ``drive_speed``; a constant
+    ``load_torque`` brakes the driven pulley. In steady running (``docs/belt-drives.md``
+    derives every line):
+
+    * each pulley carries the belt over an adhesion arc (entering, no tension change, the
+      belt moving with the pulley surface) and then a slip arc where, with the centrifugal
+      tension ``c(T) = Q v = Q^2 (1 + T/EA)/rho`` (Q the mass flow), ``T - c(T)`` changes
+      as ``exp(mu psi)`` (Euler-Eytelwein): ``(T1 - c1)/(T2 - c2) = exp(mu phi)``;
+    * the driven pulley's torque balance, with the momentum flux, is
+      ``(T1 - c1) - (T2 - c2) = M/r2``;
+    * mass flow is the same everywhere: the drive's adhesion arc sets ``v1 = omega1 r1``
+      at strain ``T1/EA``, the driven pulley's adhesion arc moves at ``v2 = v1 (EA + T2)/(EA
+      + T1)`` (Grashof creep), so ``omega2 = v2/r2``;
+    * the unstretched belt length is conserved: the spans, the adhesion arcs and the slip
+      arcs (integrated over the exponential tension) hold the length ``L0 = L_path/(1 +
+      T0/EA)`` of the belt placed on the pulleys at rest with uniform tension ``T0``
+      (``pretension``). This fixes ``T1 + T2``.
+
+    Args:
+        drive_radius: r1, radius to the belt centre line of the drive pulley [m].
+        driven_radius: r2, of the driven pulley [m].
+        centre_distance: distance between the pulley centres [m] (> ``|r2 - r1|``).
+        axial_stiffness: EA [N].
+        mass_per_length: rho, mass per unstretched length [kg/m] (> 0).
+        pretension: T0, the belt's tension at rest on the pulleys [N] (> 0).
+        mu: friction coefficient (kinetic, on the slip arcs) [-] (> 0).
+        drive_speed: omega1 [rad/s], > 0 (counter-clockwise for a counter-clockwise wrap).
+        load_torque: M, torque braking the driven pulley [N*m], >= 0.
+        quadrature: Gauss-Legendre points for the slip-arc length integral. Default 64
+            (the integrand is smooth: exact to rounding).
+
+    Returns:
+        :class:`CreepDrive`.
+
+    Raises:
+        ValueError: a non-physical argument, or a load beyond the capstan limit (the slip
+            arc would exceed the smaller wrap: the belt slides).
+    """
+    for name, value in (
+        ("drive_radius", drive_radius),
+        ("driven_radius", driven_radius),
+        ("centre_distance", centre_distance),
+        ("axial_stiffness", axial_stiffness),
+        ("mass_per_length", mass_per_length),
+        ("pretension", pretension),
+        ("mu", mu),
+        ("drive_speed", drive_speed),
+    ):
+        _check_positive(name, value)
+    if not (math.isfinite(load_torque) and load_torque >= 0.0):
+        raise ValueError(f"load_torque = {load_torque!r}: must be finite and >= 0")
+    r1, r2, d, ea, rho = drive_radius, driven_radius, centre_distance, axial_stiffness, mass_per_length
+    if d <= abs(r2 - r1):
+        raise ValueError(f"centre_distance = {d!r}: must exceed |driven_radius - drive_radius|")
+    beta = math.asin((r2 - r1) / d)
+    span = math.sqrt(d * d - (r2 - r1) ** 2)
+    wrap1, wrap2 = math.pi - 2.0 * beta, math.pi + 2.0 * beta
+    path = 2.0 * span + r1 * wrap1 + r2 * wrap2
+    length0 = path / (1.0 + pretension / ea)
+    x, w = np.polynomial.legendre.leggauss(quadrature)
+    dstar = load_torque / r2  # (T1 - c1) - (T2 - c2)
+
+    def solve(kappa: float) -> tuple[float, float, float]:
+        """T1, T2 and phi for a centrifugal coefficient kappa = Q^2/rho (c = kappa (1 + T/EA))."""
+        scale = 1.0 - kappa / ea  # T* = T scale - kappa
+
+        def tension(tstar: float | np.ndarray) -> float | np.ndarray:
+            return (tstar + kappa) / scale
+
+        def length(t2star: float) -> float:
+            t1star = t2star + dstar
+            t1, t2 = tension(t1star), tension(t2star)
+            phi = math.log(t1star / t2star) / mu
+            psi = 0.5 * phi * (x + 1.0)
+            slip = 0.5 * phi * float(np.sum(w / (1.0 + tension(t2star * np.exp(mu * psi)) / ea)))
+            return (
+                span / (1.0 + t1 / ea)
+                + span / (1.0 + t2 / ea)
+                + r1 * ((wrap1 - phi) / (1.0 + t1 / ea) + slip)
+                + r2 * ((wrap2 - phi) / (1.0 + t2 / ea) + slip)
+                - length0
+            )
+
+        lo = 1e-12 * max(pretension, dstar)
+        hi = 2.0 * pretension + dstar
+        # The material the path holds falls as the tension rises: > L0 at lo, < L0 at hi.
+        while length(hi) > 0.0:
+            hi *= 2.0
+        t2star = _brent(length, lo, hi, length(lo), length(hi), 1e-12 * hi)
+        t1star = t2star + dstar
+        return float(tension(t1star)), float(tension(t2star)), math.log(t1star / t2star) / mu
+
+    kappa = 0.0
+    for _ in range(50):
+        t1, t2, phi = solve(kappa)
+        q = rho * drive_speed * r1 / (1.0 + t1 / ea)
+        new = q * q / rho
+        if abs(new - kappa) <= 1e-14 * (1.0 + new):
+            kappa = new
+            break
+        kappa = new
+    t1, t2, phi = solve(kappa)
+    if phi > min(wrap1, wrap2):
+        raise ValueError(
+            f"load_torque = {load_torque!r}: the slip arc ({phi:.4f} rad) would exceed the wrap "
+            f"({min(wrap1, wrap2):.4f} rad): the belt slides (capstan limit)"
+        )
+    v1 = drive_speed * r1
+    v2 = v1 * (1.0 + t2 / ea) / (1.0 + t1 / ea)
+    q = rho * v1 / (1.0 + t1 / ea)
+    return CreepDrive(
+        tight_tension=t1,
+        slack_tension=t2,
+        drive_speed=drive_speed,
+        driven_speed=v2 / r2,
+        creep=1.0 - v2 / v1,
+        slip_angle=phi,
+        slip_arc=(r1 * phi, r2 * phi),
+        wrap_angles=(wrap1, wrap2),
+        adhesion_angles=(wrap1 - phi, wrap2 - phi),
+        tight_speed=v1,
+        slack_speed=v2,
+        mass_flow=q,
+        centrifugal=(q * v1, q * v2),
     )

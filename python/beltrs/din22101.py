@@ -1,6 +1,9 @@
-"""Static drive calculation of a belt conveyor after DIN 22101 (CEMA uses the same
-structure): the independent reference that the steady running of a simulated conveyor is
-checked against (reference-cases.md, case G).
+"""Static drive calculation of a straight, head-driven belt conveyor after DIN 22101 (CEMA
+uses the same structure): the independent reference that the steady running of a simulated
+conveyor is checked against (reference-cases.md, case G). Its section formula is
+:func:`beltrs.statics.din_main_resistance`, the one that :mod:`beltrs.statics` uses for the
+tensions at every point of any loop (several sections, drives, inclines, CEMA); this module
+keeps the lumped, two-strand form of the standard's hand calculation.
 
 Pure Python, SI units (m, kg, s, N). Only the resistances that the engine models are
 included, so that engine and hand calculation describe the same conveyor:
@@ -38,6 +41,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ._beltrs import SceneError
+from .statics import check as _check_value
+from .statics import din_main_resistance
+
 __all__ = ["Resistances", "HeadDriveTensions", "resistances", "head_drive_tensions", "rigid_start_force"]
 
 G = 9.81
@@ -71,11 +78,9 @@ class Resistances:
 
 
 def _check(name: str, value: float, *, positive: bool = False) -> float:
-    value = float(value)
-    if not math.isfinite(value) or value < 0 or (positive and value == 0):
-        rule = "finite and > 0" if positive else "finite and >= 0"
-        raise ValueError(f"din22101: {name} = {value!r}: must be {rule}")
-    return value
+    """``value`` as a float; a :class:`beltrs.SceneError` naming it and the rule if it is
+    not finite and >= 0 (> 0 with ``positive``)."""
+    return _check_value(name, value, positive=positive)
 
 
 def resistances(
@@ -110,6 +115,9 @@ def resistances(
         loaded_length: length of carry strand carrying material, m. Default carry_length.
         lift: H, height the material is lifted, m. Default 0.
         gravity: g, m/s². Default 9.81.
+
+    Raises:
+        beltrs.SceneError: a value out of range, naming it and the rule.
     """
     lc = _check("carry_length", carry_length)
     lr = _check("return_length", return_length)
@@ -121,14 +129,15 @@ def resistances(
     mrr = _check("return_rotating_mass", return_rotating_mass)
     ll = lc if loaded_length is None else _check("loaded_length", loaded_length)
     g = _check("gravity", gravity)
-    if not math.isfinite(slope) or abs(slope) >= math.pi / 2:
-        raise ValueError(f"din22101: slope = {slope!r}: must be finite with |slope| < pi/2 rad")
-    if not math.isfinite(lift):
-        raise ValueError(f"din22101: lift = {lift!r}: must be finite")
+    slope = _check_value("slope", slope, low=-math.pi / 2, unit="rad")
+    if abs(slope) >= math.pi / 2:
+        raise SceneError(f"slope = {slope!r}: must be finite with |slope| < pi/2 (rad)")
+    lift = _check_value("lift", lift, low=-math.inf, unit="m")
     cos = math.cos(slope)
     return Resistances(
-        main_carry=f * g * (lc * (mrc + mg * cos) + ll * ml * cos),
-        main_return=f * g * lr * (mrr + mg * cos),
+        # belt and rolls on the whole carry strand, material on its loaded length
+        main_carry=din_main_resistance(lc, f, mg, 0.0, mrc, cos, g) + din_main_resistance(ll, f, 0.0, ml, 0.0, cos, g),
+        main_return=din_main_resistance(lr, f, mg, 0.0, mrr, cos, g),
         loading=ml * v * v,
         slope=ml * g * lift,
     )

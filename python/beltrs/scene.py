@@ -297,7 +297,14 @@ class Pulley:
             drive, brake and takeup then act on the pulley alone, and friction on it is
             refused, having no normal force to act with); with 0 on every pulley no
             ``pulley_contact`` stage is compiled.
-        contact_damping: normal contact damping, N*s/m. Default 0.
+        contact_damping: normal contact damping, N*s/m, >= 0, on the approach speed only.
+            Default None: from ``contact_damping_ratio``. Give one or the other, not both.
+        contact_damping_ratio: normal contact damping as a fraction zeta of critical,
+            dimensionless, >= 0: c = 2 zeta sqrt(k m), k the contact stiffness and m the
+            belt's node mass (mass_per_length * element length, without material). Default
+            None: 0.2 (``DEFAULT_CONTACT_DAMPING_RATIO``) unless ``contact_damping`` is
+            given. Undamped contact (0) with friction lets the belt bounce off the pulley
+            and gets a :class:`beltrs.UndampedContactWarning` (docs/belt-drives.md).
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
@@ -311,7 +318,8 @@ class Pulley:
     wrap: str = "ccw"
     friction: Optional[Friction] = None
     contact_stiffness: float = 1e9
-    contact_damping: float = 0.0
+    contact_damping: Optional[float] = None
+    contact_damping_ratio: Optional[float] = None
     takeup: Optional[Takeup] = None
     drive: Optional[Drive] = None
     brake: Optional[Brake] = None
@@ -331,6 +339,7 @@ class Pulley:
             "friction": None if self.friction is None else self.friction.to_dict(),
             "contact_stiffness": self.contact_stiffness,
             "contact_damping": self.contact_damping,
+            "contact_damping_ratio": self.contact_damping_ratio,
             "takeup": None if self.takeup is None else self.takeup.to_dict(),
             "drive": None if self.drive is None else self.drive.to_dict(),
             "brake": None if self.brake is None else self.brake.to_dict(),
@@ -346,7 +355,11 @@ class Idler:
         radius: radius, m. Default 0.0635.
         inertia: rotating inertia, kg*m^2. Default 0.01.
         contact_stiffness: N/m. Default 1e8.
-        contact_damping: N*s/m. Default 0.
+        contact_damping: normal contact damping, N*s/m, >= 0. Default None: from
+            ``contact_damping_ratio``. Give one or the other, not both.
+        contact_damping_ratio: normal contact damping as a fraction of critical,
+            c = 2 zeta sqrt(k m) with m the belt's node mass. Default None: 0.2 unless
+            ``contact_damping`` is given.
         friction: belt friction. Default None (the roll never turns).
         resistance: running resistance, DIN 22101's artificial friction coefficient f,
             dimensionless, >= 0. The belt meets a tangential force at the contact point
@@ -362,7 +375,8 @@ class Idler:
     radius: float = 0.0635
     inertia: float = 0.01
     contact_stiffness: float = 1e8
-    contact_damping: float = 0.0
+    contact_damping: Optional[float] = None
+    contact_damping_ratio: Optional[float] = None
     friction: Optional[Friction] = None
     resistance: float = 0.0
     rotating_mass: float = 0.0
@@ -377,6 +391,7 @@ class Idler:
             "inertia": self.inertia,
             "contact_stiffness": self.contact_stiffness,
             "contact_damping": self.contact_damping,
+            "contact_damping_ratio": self.contact_damping_ratio,
             "friction": None if self.friction is None else self.friction.to_dict(),
             "resistance": self.resistance,
             "rotating_mass": self.rotating_mass,
@@ -435,6 +450,11 @@ class Belt:
         max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
             only when ``elements`` is None.
         tension_only: if True a slack element carries no compression. Default False.
+        max_placement_strain: largest strain, dimensionless, > 0, at which the belt may be
+            placed on its initial path, |path length / length - 1|; a belt stretched (or
+            compressed) more is refused as too short (too long) for its path, usually a
+            unit slip. Raise it for a pre-strained elastic drive belt (the belt-drive
+            literature's benchmarks are pre-strained 5.26 %). Default 0.1.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
     """
 
@@ -447,6 +467,7 @@ class Belt:
     max_element_angle: float = math.pi / 6
     tension_only: bool = False
     formulation: str = "node_kelvin_voigt"
+    max_placement_strain: float = 0.1
 
     def __post_init__(self) -> None:
         _normalise(self)

@@ -291,8 +291,8 @@ def guo_wang_conveyor(
     takeup_tension: float = GUO_WANG["takeup_tension"],
     time_step_fraction: float = 0.5,
 ) -> Scene:
-    """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (seed 001, Table 1),
-    started by a speed-controlled drive along ``start_curve``.
+    """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (Guo & Wang 2020,
+    Table 1; docs/reference-cases.md), started by a speed-controlled drive along ``start_curve``.
 
     From the paper: 972 m between pulley centres, horizontal; 400 t/h at 2 m/s, so
     55.6 kg/m of material on the carry strand; belt 1 m wide, 24.5 kg/m, rated 1250 N/mm;

@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _beltrs
 from ._progress import make_bar
+from ._checks import warn_scene
 from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
@@ -155,6 +156,7 @@ class Simulation:
         self.scene = scene
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
+        warn_scene(scene)
         self._busy = threading.Lock()
 
     @contextlib.contextmanager
@@ -572,6 +574,7 @@ class Simulation:
             raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene")
         self._core.set_scene(scene.to_dict())
         self.scene = scene
+        warn_scene(scene)
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         """The index of ``pulley`` (an index in [0, P) or a name), else a SceneError. A

@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 2; version 1 is still read)
+//! # Format (version 3; versions 1 and 2 are still read)
 //!
 //! All integers are little-endian; every `f64` is stored as its raw IEEE-754 bits
 //! (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (2) |
+//! | 8..12 | format version, `u32` (3) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -31,6 +31,12 @@
 //! (belt and material) and each load's zone edges (start element, end element, start and
 //! end material coordinates). A version-1 file reads as a scene without resistance or
 //! loads, whose node masses are the belt's.
+//!
+//! Version 3 writes each pulley's and idler's contact damping as two options (a tag byte 0/1,
+//! then the `f64` when 1): `contact_damping` (N·s/m) then `contact_damping_ratio`, in place
+//! of the one `f64`; and the belt's `max_placement_strain` after `tension_only`. Earlier
+//! files read as an absolute damping (their value, 0 for none: the run resumes unchanged)
+//! and a placement limit of 5 % (the fixed rule then).
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -56,7 +62,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// Oldest version this build reads.
 pub const OLDEST_READ_VERSION: u32 = 1;
 const HEADER_BYTES: usize = 24;
@@ -556,6 +562,15 @@ impl<'a> Reader<'a> {
             .map(|_| Ok(Vector2::new(self.f64(what)?, self.f64(what)?)))
             .collect()
     }
+    /// A body's (contact_damping, contact_damping_ratio): both optional from version 3; before,
+    /// an absolute damping (0 for none), kept as given so the run resumes unchanged.
+    fn contact_damping(&mut self, what: &str) -> Decoded<(Option<f64>, Option<f64>)> {
+        if self.version >= 3 {
+            Ok((self.opt_f64(what)?, self.opt_f64(what)?))
+        } else {
+            Ok((Some(self.f64(what)?), None))
+        }
+    }
     fn opt_f64(&mut self, what: &str) -> Decoded<Option<f64>> {
         Ok(if self.bool(what)? {
             Some(self.f64(what)?)
@@ -600,6 +615,7 @@ fn write_scene(w: &mut Writer, s: &Scene) {
     }
     w.f64(b.max_element_angle);
     w.bool(b.tension_only);
+    w.f64(b.max_placement_strain);
     w.u64(s.pulleys.len() as u64);
     for p in &s.pulleys {
         w.str(&p.name);
@@ -614,7 +630,8 @@ fn write_scene(w: &mut Writer, s: &Scene) {
         });
         w.friction(&p.friction);
         w.f64(p.contact_stiffness);
-        w.f64(p.contact_damping);
+        w.opt_f64(p.contact_damping);
+        w.opt_f64(p.contact_damping_ratio);
         match &p.takeup {
             None => w.u8(0),
             Some(t) => {
@@ -666,7 +683,8 @@ fn write_scene(w: &mut Writer, s: &Scene) {
         w.f64(d.radius);
         w.f64(d.inertia);
         w.f64(d.contact_stiffness);
-        w.f64(d.contact_damping);
+        w.opt_f64(d.contact_damping);
+        w.opt_f64(d.contact_damping_ratio);
         w.friction(&d.friction);
         w.f64(d.resistance);
         w.f64(d.rotating_mass);
@@ -703,10 +721,16 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
         },
         max_element_angle: r.f64("belt.max_element_angle")?,
         tension_only: r.bool("belt.tension_only")?,
+        // Versions before 3 had the fixed limit of 5 %.
+        max_placement_strain: if r.version >= 3 {
+            r.f64("belt.max_placement_strain")?
+        } else {
+            0.05
+        },
     };
-    // The smallest records (no options, empty name) take 62 and 49 bytes: bounds for the
-    // length checks.
-    let n_pulleys = r.len("pulleys", 62)?;
+    // The smallest records (no options, empty name) take 56 and 43 bytes (version 3; 62
+    // and 49 before): bounds for the length checks.
+    let n_pulleys = r.len("pulleys", 56)?;
     let mut pulleys = Vec::with_capacity(n_pulleys);
     for i in 0..n_pulleys {
         let f = |k: &str| format!("pulleys[{i}].{k}");
@@ -722,7 +746,7 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
         };
         let friction = r.friction(&f("friction"))?;
         let contact_stiffness = r.f64(&f("contact_stiffness"))?;
-        let contact_damping = r.f64(&f("contact_damping"))?;
+        let (contact_damping, contact_damping_ratio) = r.contact_damping(&f("contact_damping"))?;
         let takeup = if r.bool(&f("takeup"))? {
             Some(TakeupSpec {
                 direction: [r.f64(&f("takeup"))?, r.f64(&f("takeup"))?],
@@ -781,12 +805,13 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
             friction,
             contact_stiffness,
             contact_damping,
+            contact_damping_ratio,
             takeup,
             drive,
             brake,
         });
     }
-    let n_idlers = r.len("idlers", 49)?;
+    let n_idlers = r.len("idlers", 43)?;
     let mut idlers = Vec::with_capacity(n_idlers);
     for i in 0..n_idlers {
         let f = format!("idlers[{i}]");
@@ -795,10 +820,10 @@ fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
             radius: r.f64(&f)?,
             inertia: r.f64(&f)?,
             contact_stiffness: r.f64(&f)?,
-            contact_damping: r.f64(&f)?,
-            friction: r.friction(&f)?,
             ..IdlerSpec::default()
         };
+        (spec.contact_damping, spec.contact_damping_ratio) = r.contact_damping(&f)?;
+        spec.friction = r.friction(&f)?;
         if r.version >= 2 {
             spec.resistance = r.f64(&f)?;
             spec.rotating_mass = r.f64(&f)?;

@@ -23,6 +23,12 @@ pub struct StickScratch {
     sticking: Vec<bool>,
     /// Tangential friction force of each contact (positive along t_i on the pulley), N.
     pub force: Vec<f64>,
+    /// Storage of the slip loop's two candidate heaps (see `release_slipping`).
+    heap_pos: Vec<Candidate>,
+    heap_neg: Vec<Candidate>,
+    /// Each contact's excess over µs·N per unit mass at α = 0, "+" and "−" sides, m/s².
+    key_pos: Vec<f64>,
+    key_neg: Vec<f64>,
 }
 
 /// Prescribed motion of a pulley with a limited torque: whatever holds the pulley (a brake
@@ -178,42 +184,208 @@ pub fn pulley_stick_friction(
         held = Some(torque);
         scratch.sticking.iter_mut().for_each(|s| *s = true);
     }
-    let mut known_torque = pulley.applied_torque + held.unwrap_or(0.0);
-    let mut slipping = 0;
-    loop {
-        let (mut a_sum, mut m_sum) = (0.0, 0.0);
+    let known_torque = pulley.applied_torque + held.unwrap_or(0.0);
+    let slipping = release_slipping(contacts, pulley, mass, scratch, known_torque);
+    apply(contacts, scratch, force, r, slipping, held)
+}
+
+/// A slip candidate: its excess per unit mass at α = 0 on one side, and its index.
+#[derive(Debug, Clone, Copy)]
+struct Candidate(f64, usize);
+
+impl PartialEq for Candidate {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other).is_eq()
+    }
+}
+impl Eq for Candidate {}
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Candidate {
+    /// Largest key first; on equal keys the lowest index (the first violator found, as the
+    /// one-at-a-time scan chose).
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0
+            .total_cmp(&other.0)
+            .then_with(|| other.1.cmp(&self.1))
+    }
+}
+
+/// The slip loop of thesis figure 4.9 for a pulley that moves freely under `known_torque`
+/// (N·m, everything but belt friction): release the worst violator of the static limit,
+/// re-solve the pulley's angular acceleration α with its kinetic force known, repeat until
+/// every sticking node is within µs·N. Returns the number of slipping nodes; the forces are
+/// left in `scratch.force`.
+///
+/// A sticking node's stick force is f_k = free_k − m_k·r·α, so its excess over the static
+/// limit per unit node mass is A_k − r·α on the "+" side (f > 0) and B_k + r·α on the "−"
+/// side, with A_k = (free_k − µs·N_k)/m_k and B_k = (−free_k − µs·N_k)/m_k fixed for the
+/// step. The order of the candidates on each side therefore does not depend on α: two
+/// heaps keyed by A and B give the worst violator at any α from their two tops, and a
+/// release updates α in O(1). The loop is the one-at-a-time rule itself, at
+/// O(n_c + n_slip·log n_c) instead of O(n_c·n_slip) (issue 11). The worst violator is the
+/// one with the largest excess per unit mass (the largest slip acceleration it would need);
+/// with equal node masses on the pulley (every belt without material on it there) that is
+/// the largest excess, exactly as before.
+fn release_slipping(
+    contacts: &PulleyContacts,
+    pulley: &FrictionPulley,
+    mass: &[f64],
+    scratch: &mut StickScratch,
+    known_torque: f64,
+) -> usize {
+    let nc = contacts.len();
+    let r = pulley.radius;
+    let (mut a_sum, mut m_sum) = (0.0, 0.0);
+    for k in 0..nc {
+        if scratch.sticking[k] {
+            a_sum += scratch.free[k];
+            m_sum += mass[contacts.node[k]];
+        }
+    }
+    let alpha = |torque: f64, a_sum: f64, m_sum: f64| {
+        (torque + r * a_sum) / (pulley.inertia + r * r * m_sum)
+    };
+    // The common case: nothing slips at the first solve (one O(n_c) pass, no heaps).
+    let alpha0 = alpha(known_torque, a_sum, m_sum);
+    let mut any = false;
+    for k in 0..nc {
+        let f = scratch.free[k] - mass[contacts.node[k]] * r * alpha0;
+        scratch.force[k] = f;
+        any |= f.abs() > pulley.mu_static * contacts.normal_force[k];
+    }
+    if !any {
+        return 0;
+    }
+    // Keys: excess per unit mass at α = 0, "+" side (A_k) and "−" side (B_k).
+    scratch.key_pos.clear();
+    scratch.key_neg.clear();
+    for k in 0..nc {
+        let inv_m = 1.0 / mass[contacts.node[k]];
+        let limit = pulley.mu_static * contacts.normal_force[k];
+        scratch.key_pos.push((scratch.free[k] - limit) * inv_m);
+        scratch.key_neg.push((-scratch.free[k] - limit) * inv_m);
+    }
+    let (mut torque, mut slipping) = (known_torque, 0);
+    // Waves first: with E the largest excess on the other side (0 if none), every node on
+    // the worst side whose excess exceeds E is the next in the one-at-a-time rule's order
+    // on that side, and stays ahead of every node of the other side while it is released
+    // (its excess grows as α moves away, the other side's shrink). So releasing that whole
+    // prefix in one O(n_c) pass gives exactly the states of the one-at-a-time rule. A slip
+    // arc, a sliding capstan or a settling belt is one or two waves; what remains after
+    // WAVES goes to the heaps.
+    const WAVES: usize = 2;
+    for _ in 0..WAVES {
+        let ra = r * alpha(torque, a_sum, m_sum);
+        let (mut ep, mut en) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for k in 0..nc {
             if scratch.sticking[k] {
-                a_sum += scratch.free[k];
-                m_sum += mass[contacts.node[k]];
+                ep = ep.max(scratch.key_pos[k] - ra);
+                en = en.max(scratch.key_neg[k] + ra);
             }
         }
-        let alpha = (known_torque + r * a_sum) / (pulley.inertia + r * r * m_sum);
-        // Only the worst violator slips per pass: the others' stick forces were computed
-        // assuming it sticks, so they are re-solved with its kinetic force known (marking
-        // all violators at once can push a node the way its own friction acts).
-        let mut worst: Option<(usize, f64, f64)> = None;
+        if !(ep > 0.0 || en > 0.0) {
+            finish(contacts, mass, scratch, r, |a, m| alpha(torque, a, m));
+            return slipping;
+        }
+        let positive = ep >= en;
+        let (keys, shift, top, other, sign) = if positive {
+            (&scratch.key_pos, -ra, ep, en, 1.0)
+        } else {
+            (&scratch.key_neg, ra, en, ep, -1.0)
+        };
+        let threshold = other.max(0.0);
         for k in 0..nc {
             if !scratch.sticking[k] {
                 continue;
             }
-            let f = scratch.free[k] - mass[contacts.node[k]] * r * alpha;
-            scratch.force[k] = f;
-            let excess = f.abs() - pulley.mu_static * contacts.normal_force[k];
-            if excess > 0.0 && worst.is_none_or(|(_, e, _)| excess > e) {
-                worst = Some((k, excess, f));
+            let e = keys[k] + shift;
+            // `>= top`: the worst itself always goes (ties with the other side included).
+            if e > threshold || e >= top {
+                let fk = sign * pulley.mu_kinetic * contacts.normal_force[k];
+                scratch.force[k] = fk;
+                scratch.sticking[k] = false;
+                torque += r * fk;
+                a_sum -= scratch.free[k];
+                m_sum -= mass[contacts.node[k]];
+                slipping += 1;
             }
         }
-        let Some((k, _, f)) = worst else {
+    }
+    let mut pos = std::mem::take(&mut scratch.heap_pos);
+    let mut neg = std::mem::take(&mut scratch.heap_neg);
+    pos.clear();
+    neg.clear();
+    for k in 0..nc {
+        if scratch.sticking[k] {
+            pos.push(Candidate(scratch.key_pos[k], k));
+            neg.push(Candidate(scratch.key_neg[k], k));
+        }
+    }
+    let mut pos = std::collections::BinaryHeap::from(pos);
+    let mut neg = std::collections::BinaryHeap::from(neg);
+    loop {
+        let ra = r * alpha(torque, a_sum, m_sum);
+        // Drop released nodes from the tops (each was released through the other heap).
+        while pos.peek().is_some_and(|c| !scratch.sticking[c.1]) {
+            pos.pop();
+        }
+        while neg.peek().is_some_and(|c| !scratch.sticking[c.1]) {
+            neg.pop();
+        }
+        let ep = pos.peek().map_or(f64::NEG_INFINITY, |c| c.0 - ra);
+        let en = neg.peek().map_or(f64::NEG_INFINITY, |c| c.0 + ra);
+        // In mass-scaled units, m_k·(excess) > 0 exactly when the node violates.
+        let (k, sign) = if ep >= en && ep > 0.0 {
+            (pos.pop().map(|c| c.1), 1.0)
+        } else if en > 0.0 {
+            (neg.pop().map(|c| c.1), -1.0)
+        } else {
             break;
         };
-        let (fk, _) = limit(f, contacts.normal_force[k], pulley);
+        let Some(k) = k else { break };
+        let m = mass[contacts.node[k]];
+        // The side's heap found the violation (f = free − m·r·α beyond ±µs·N); it slips
+        // with µk·N against it.
+        let fk = sign * pulley.mu_kinetic * contacts.normal_force[k];
         scratch.force[k] = fk;
         scratch.sticking[k] = false;
-        known_torque += r * fk;
+        torque += r * fk;
+        a_sum -= scratch.free[k];
+        m_sum -= m;
         slipping += 1;
     }
-    apply(contacts, scratch, force, r, slipping, held)
+    scratch.heap_pos = pos.into_vec();
+    scratch.heap_neg = neg.into_vec();
+    finish(contacts, mass, scratch, r, |a, m| alpha(torque, a, m));
+    slipping
+}
+
+/// The sticking nodes' forces at the final α = `alpha`(A, M) of the slip loop, with the
+/// sums A and M over the sticking nodes taken afresh (no running subtraction left in them).
+fn finish(
+    contacts: &PulleyContacts,
+    mass: &[f64],
+    scratch: &mut StickScratch,
+    r: f64,
+    alpha: impl Fn(f64, f64) -> f64,
+) {
+    let (mut a_sum, mut m_sum) = (0.0, 0.0);
+    for k in 0..contacts.len() {
+        if scratch.sticking[k] {
+            a_sum += scratch.free[k];
+            m_sum += mass[contacts.node[k]];
+        }
+    }
+    let ra = r * alpha(a_sum, m_sum);
+    for k in 0..contacts.len() {
+        if scratch.sticking[k] {
+            scratch.force[k] = scratch.free[k] - mass[contacts.node[k]] * ra;
+        }
+    }
 }
 
 /// The friction force a contact can carry: the stick force `f` if within µs·N, else µk·N

@@ -106,7 +106,7 @@ pub struct PulleyModel {
     pub inertia: f64,
     /// Contact stiffness, N/m.
     pub contact_stiffness: f64,
-    /// Contact damping, N·s/m.
+    /// Contact damping, N·s/m (the scene's absolute value, or 2ζ√(k·m) from its ratio).
     pub contact_damping: f64,
     /// Friction model.
     pub friction: FrictionModel,
@@ -264,28 +264,28 @@ impl Model {
             .fold(f64::INFINITY, f64::min);
         // Strain needed to stretch the belt onto the path.
         let strain = path.length / belt_length - 1.0;
-        const MAX_PLACEMENT_STRAIN: f64 = 0.05;
-        if strain > MAX_PLACEMENT_STRAIN {
+        let max_strain = belt.max_placement_strain;
+        if strain > max_strain {
             return Err(BeltError::invalid(
                 "belt.length",
                 belt_length,
                 format!(
-                    "the belt is too short for its path of {:.6} m: it would be stretched by {:.2} % (limit {} %)",
+                    "the belt is too short for its path of {:.6} m: it would be stretched by {:.2} % (limit belt.max_placement_strain = {} %; raise it for a pre-strained belt)",
                     path.length,
                     100.0 * strain,
-                    100.0 * MAX_PLACEMENT_STRAIN
+                    100.0 * max_strain
                 ),
             ));
         }
-        if strain < -MAX_PLACEMENT_STRAIN {
+        if strain < -max_strain {
             return Err(BeltError::invalid(
                 "belt.length",
                 belt_length,
                 format!(
-                    "the belt is too long for its path of {:.6} m: it would be compressed by {:.2} % (limit {} %)",
+                    "the belt is too long for its path of {:.6} m: it would be compressed by {:.2} % (limit belt.max_placement_strain = {} %)",
                     path.length,
                     -100.0 * strain,
-                    100.0 * MAX_PLACEMENT_STRAIN
+                    100.0 * max_strain
                 ),
             ));
         }
@@ -353,7 +353,12 @@ impl Model {
                     radius: p.radius,
                     inertia: p.polar_inertia() + drive_inertia,
                     contact_stiffness: p.contact_stiffness,
-                    contact_damping: p.contact_damping,
+                    contact_damping: crate::scene::contact_damping(
+                        p.contact_damping,
+                        p.contact_damping_ratio,
+                        p.contact_stiffness,
+                        m_el,
+                    ),
                     friction: p.friction,
                     takeup: p.takeup.as_ref().map(|t| {
                         let dir = Vector2::new(t.direction[0], t.direction[1]);
@@ -381,7 +386,12 @@ impl Model {
                 radius: d.radius,
                 inertia: d.inertia,
                 contact_stiffness: d.contact_stiffness,
-                contact_damping: d.contact_damping,
+                contact_damping: crate::scene::contact_damping(
+                    d.contact_damping,
+                    d.contact_damping_ratio,
+                    d.contact_stiffness,
+                    m_el,
+                ),
                 friction: d.friction,
                 resistance: d.resistance,
                 rotating_mass: d.rotating_mass,

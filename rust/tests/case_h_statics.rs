@@ -112,7 +112,7 @@ fn damping_does_not_change_or_upset_the_relaxation() {
     let mut scene = common::case_h(89);
     scene.belt.damping_ratio = 0.2;
     for p in &mut scene.pulleys {
-        p.contact_damping = 1e5;
+        p.contact_damping = Some(1e5);
     }
     let mut damped = Simulation::new(&scene).unwrap();
     let rep = damped.stabilise(&StabiliseOptions::default()).unwrap();

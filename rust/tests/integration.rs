@@ -2,6 +2,7 @@
 #![allow(clippy::needless_range_loop)]
 mod common;
 
+mod belt_drive_defaults;
 mod case_h_statics;
 mod checkpoint;
 mod friction_contact;

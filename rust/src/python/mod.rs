@@ -728,5 +728,9 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DivergenceError", m.py().get_type::<DivergenceError>())?;
     m.add("CheckpointError", m.py().get_type::<CheckpointError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add(
+        "DEFAULT_CONTACT_DAMPING_RATIO",
+        crate::scene::DEFAULT_CONTACT_DAMPING_RATIO,
+    )?;
     Ok(())
 }

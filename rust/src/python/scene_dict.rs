@@ -361,6 +361,7 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
                 elements: b.opt_usize("elements")?,
                 max_element_angle: b.f64("max_element_angle", bd.max_element_angle)?,
                 tension_only: b.bool("tension_only", bd.tension_only)?,
+                max_placement_strain: b.f64("max_placement_strain", bd.max_placement_strain)?,
             };
             b.finish()?;
             p
@@ -434,7 +435,8 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
             wrap,
             friction: friction(&mut p)?,
             contact_stiffness: p.f64("contact_stiffness", pd.contact_stiffness)?,
-            contact_damping: p.f64("contact_damping", pd.contact_damping)?,
+            contact_damping: p.opt_f64("contact_damping")?,
+            contact_damping_ratio: p.opt_f64("contact_damping_ratio")?,
             takeup,
             drive,
             brake,
@@ -451,7 +453,8 @@ pub fn scene_from_dict(value: &Bound<'_, PyAny>) -> BeltResult<Scene> {
             radius: d.f64("radius", dd.radius)?,
             inertia: d.f64("inertia", dd.inertia)?,
             contact_stiffness: d.f64("contact_stiffness", dd.contact_stiffness)?,
-            contact_damping: d.f64("contact_damping", dd.contact_damping)?,
+            contact_damping: d.opt_f64("contact_damping")?,
+            contact_damping_ratio: d.opt_f64("contact_damping_ratio")?,
             friction: friction(&mut d)?,
             resistance: d.f64("resistance", dd.resistance)?,
             rotating_mass: d.f64("rotating_mass", dd.rotating_mass)?,

@@ -39,6 +39,7 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
     belt.set_item("elements", b.elements)?;
     belt.set_item("max_element_angle", b.max_element_angle)?;
     belt.set_item("tension_only", b.tension_only)?;
+    belt.set_item("max_placement_strain", b.max_placement_strain)?;
     belt.set_item("formulation", b.formulation.name())?;
     root.set_item("belt", belt)?;
     let pulleys = PyList::empty(py);
@@ -59,6 +60,7 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
         d.set_item("friction", friction(py, &p.friction)?)?;
         d.set_item("contact_stiffness", p.contact_stiffness)?;
         d.set_item("contact_damping", p.contact_damping)?;
+        d.set_item("contact_damping_ratio", p.contact_damping_ratio)?;
         let takeup = match &p.takeup {
             None => None,
             Some(t) => {
@@ -117,6 +119,7 @@ pub fn scene_to_dict<'py>(py: Python<'py>, s: &Scene) -> PyResult<Bound<'py, PyD
         d.set_item("inertia", k.inertia)?;
         d.set_item("contact_stiffness", k.contact_stiffness)?;
         d.set_item("contact_damping", k.contact_damping)?;
+        d.set_item("contact_damping_ratio", k.contact_damping_ratio)?;
         d.set_item("friction", friction(py, &k.friction)?)?;
         d.set_item("resistance", k.resistance)?;
         d.set_item("rotating_mass", k.rotating_mass)?;

@@ -1,0 +1,151 @@
+"""Start-up study on a builder-made conveyor: the four starting curves of Guo & Wang (2020)
+(Harrison, Nordell, cubic, linear), each over two ramp times, with and without a pre-start
+(creep) section, on a conveyor built with :mod:`beltrs.conveyor`. Prints a table of peak
+belt tension, peak acceleration, takeup travel and drive power.
+
+    python examples/startup_study.py            # 1 km, ST1250, 400 t/h at 2 m/s; 10 s and 30 s ramps,
+                                                # 3 s pre-start: 16 runs, about an hour on one core
+    python examples/startup_study.py --quick    # 40 m EP630/4 belt, ramps 1 s and 3 s, 0.3 s pre-start:
+                                                # the same study in seconds (a smoke test of the script)
+
+examples/startup_study.toml is the full-size conveyor's scene with the first curve
+(``--write-scene`` writes it; a test checks that it equals what this script builds).
+
+The conveyor is relaxed once to static equilibrium (drive held at rest), checkpointed, and
+each case starts from that checkpoint with its own start curve. Every case uses the same
+takeup tension and motor (sized by the builder for the most demanding curve), so that the
+curves are compared on one machine.
+
+Columns:
+- peak T: the largest element tension anywhere on the belt during the run, kN (raw), and
+  the same series below 2 Hz (beltrs.analysis.low_pass: the node model's chordal ripple at
+  the node-passing frequency removed, docs/case-g.md);
+- T steady: the largest belt tension below 2 Hz averaged over the last second, kN (DIN
+  22101's T1 from beltrs.statics is in the header: in the quick study the belt is still
+  ringing from its start then);
+- a drive / a tail: peak belt acceleration at the drive drum (from its recorded speed) and
+  at the tail drum (its speed below 2 Hz: the free drum carries the chordal ripple), m/s^2;
+  the tail's shows the start wave's overshoot;
+- takeup: the largest takeup travel from its start position, m (negative: towards the
+  conveyor, taking up the belt's stretch);
+- P peak / P end: drive power (torque x speed, positive when driving), kW.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from dataclasses import replace
+
+import numpy as np
+
+import beltrs
+from beltrs.analysis import low_pass
+from beltrs.conveyor import Conveyor, DriveSpec, TakeupSpec
+
+SHAPES = ("harrison", "nordell", "cubic", "linear")
+
+FULL = dict(length=1000.0, belt="ST1250", capacity=400.0, speed=2.0, ramps=(10.0, 30.0), prestart=3.0,
+            settle=5.0, interval=0.05)
+QUICK = dict(length=40.0, belt="EP630/4", capacity=150.0, speed=1.5, ramps=(1.0, 3.0), prestart=0.3,
+             settle=0.5, interval=0.01)
+
+
+def curves(cfg: dict) -> list[beltrs.StartCurve]:
+    """The study's start curves: shapes x ramps x (no pre-start, pre-start)."""
+    out = []
+    for prestart in (0.0, cfg["prestart"]):
+        for ramp in cfg["ramps"]:
+            for shape in SHAPES:
+                out.append(beltrs.StartCurve(shape=shape, speed=cfg["speed"], ramp=ramp, prestart=prestart))
+    return out
+
+
+def design(cfg: dict) -> tuple[float, float, beltrs.statics.TensionProfile]:
+    """Takeup tension per strand (N) and motor power (W), sized by the builder for the
+    study's steepest curve, and the DIN 22101 tensions, shared by every case."""
+    steepest = max(curves(cfg), key=lambda c: float(np.max(c.acceleration_at(np.linspace(0, c.end, 2001)))))
+    ref = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
+                   speed=cfg["speed"], drives=[DriveSpec("head", start_curve=steepest)])
+    return ref.takeup_tension(), ref.motor_power("head"), ref.statics()
+
+
+def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float) -> beltrs.Scene:
+    """The study's conveyor started along ``curve`` (examples/startup_study.toml is the
+    full-size one with the first curve)."""
+    c = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
+                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power)],
+                 takeup=TakeupSpec("tail", tension=tension))
+    return c.scene()
+
+
+def study(cfg: dict, out=sys.stdout) -> list[dict]:
+    cases = curves(cfg)
+    tension, power, din = design(cfg)
+    print(f"# Start-up study: {cfg['length']:g} m, {cfg['belt']}, {cfg['capacity']:g} t/h at {cfg['speed']:g} m/s; "
+          f"takeup {tension / 1e3:g} kN per strand, motor {power / 1e3:g} kW; DIN 22101 T1 = "
+          f"{din.drive('head').tight / 1e3:.1f} kN, T2 = {din.drive('head').slack / 1e3:.1f} kN\n", file=out)
+
+    scene = build(cfg, cases[0], tension, power)
+    sim = beltrs.Simulation(scene)
+    t0 = time.perf_counter()
+    sim.stabilise(tolerance=1e-5, friction=scene.recording.stabilise_friction, max_steps=2_000_000)
+    relax = time.perf_counter() - t0
+    head = scene.pulley_index("head")
+    tail = scene.pulley_index("tail")
+    r = scene.pulleys[head].radius
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        ck = os.path.join(tmp, "relaxed.ck")
+        sim.save_checkpoint(ck)
+        for curve in cases:
+            s = beltrs.Simulation.load_checkpoint(ck)
+            drive = build(cfg, curve, tension, power).pulleys[head].drive
+            s.set_drive("head", replace(drive, start_curve=replace(drive.start_curve, start=s.time)))
+            t0 = time.perf_counter()
+            res = s.run(curve.end + cfg["settle"], record_interval=cfg["interval"], tension=True,
+                        node_position=False, node_velocity=False)
+            wall = time.perf_counter() - t0
+            dt = float(res.time[1] - res.time[0])
+            tmax = res.tension.max(axis=1)
+            smooth = low_pass(tmax, dt, 2.0)
+            last = res.time >= res.time[-1] - 1.0
+            a_drive = np.gradient(-res.pulley_speed[:, head] * r, dt)  # held on its curve: no ripple
+            a_tail = np.gradient(low_pass(-res.pulley_speed[:, tail] * r, dt, 2.0), dt)
+            p = res.drive_torque[:, head] * res.pulley_speed[:, head]
+            travel = res.takeup_travel[:, tail]
+            rows.append(dict(
+                shape=curve.shape, ramp=curve.ramp, prestart=curve.prestart,
+                peak=tmax.max(), at=res.time[np.argmax(tmax)] - res.time[0], peak2=smooth.max(),
+                steady=smooth[last].mean(), a_drive=a_drive.max(), a_tail=a_tail.max(),
+                takeup=travel[np.argmax(np.abs(travel))], p_peak=p.max(), p_end=p[last].mean(), wall=wall,
+                t1_din=din.drive("head").tight))
+    print(f"Relaxation {relax:.1f} s of wall.\n", file=out)
+    print("| curve | ramp, s | pre-start, s | peak T, kN | at, s | peak T < 2 Hz, kN | T steady, kN | "
+          "a drive, m/s² | a tail, m/s² | takeup, m | P peak, kW | P end, kW | wall, s |", file=out)
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|", file=out)
+    for w in rows:
+        print(f"| {w['shape']} | {w['ramp']:g} | {w['prestart']:g} | {w['peak'] / 1e3:.1f} | {w['at']:.2f} | "
+              f"{w['peak2'] / 1e3:.1f} | {w['steady'] / 1e3:.1f} | {w['a_drive']:.3f} | {w['a_tail']:.3f} | "
+              f"{w['takeup']:.3f} | {w['p_peak'] / 1e3:.1f} | {w['p_end'] / 1e3:.1f} | {w['wall']:.1f} |", file=out)
+    return rows
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="a 40 m conveyor with short ramps (seconds)")
+    parser.add_argument("--write-scene", metavar="PATH", help="write the full study's first scene to PATH and stop")
+    args = parser.parse_args(argv)
+    if args.write_scene:
+        tension, power, _ = design(FULL)
+        build(FULL, curves(FULL)[0], tension, power).save(args.write_scene)
+        return 0
+    study(QUICK if args.quick else FULL)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

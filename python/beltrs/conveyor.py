@@ -1,0 +1,804 @@
+"""A belt conveyor in a few lines: the engineer's description (profile, belt class,
+capacity and speed, idlers, drives, takeup) turned into a :class:`beltrs.Scene` with the
+numerical settings chosen for the user, and into the matching static calculation
+(:mod:`beltrs.statics`). Tutorial and the reasons for every choice: ``docs/conveyor-builder.md``.
+
+.. code-block:: python
+
+    import beltrs
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    c = Conveyor(profile=[(0, 0), (600, 0), (1000, 25)], curve_radii=[1500],
+                 belt="ST1250", width=1.0, speed=4.0, capacity=1500.0,
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=4.0, ramp=30.0))])
+    scene = c.scene()            # a beltrs.Scene: belt, pulleys, idlers, load, drive, takeup
+    din = c.statics()            # DIN 22101 tensions at every point (beltrs.statics)
+    sim = beltrs.Simulation(scene)
+
+Or from a TOML file with a ``[conveyor]`` table (:func:`load`); the scene it builds is an
+ordinary scene (``scene.save(...)`` writes a scene file).
+
+Geometry and signs: x along the conveyor from the tail, y up. The carry strand runs on top
+from the tail (station 0) to the head (the last station); the belt travels clockwise round
+the pulleys, so drive speeds and torques are negative in the engine's counter-clockwise
+convention (the builder converts: give speeds positive).
+
+SI units throughout; a capacity is in t/h (the unit engineers use), converted at once.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+
+from . import statics
+from ._beltrs import SceneError
+from .layout import Profile, idlers_along
+from .scene import Belt, Drive, Friction, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
+from .statics import check
+
+__all__ = [
+    "BELTS",
+    "BeltClass",
+    "Conveyor",
+    "DriveSpec",
+    "IdlerSet",
+    "TakeupSpec",
+    "load",
+    "loads",
+    "pulley_radius_for",
+]
+
+RUBBER_DENSITY = 1150.0  #: kg/m³, cover and core rubber (typical 1100-1200)
+STEEL_DENSITY = 7850.0  #: kg/m³
+CORD_FILL = 0.6  #: steel fraction of a cord's circumscribed circle (stranded 7x7 / 7x19 cords)
+
+
+@dataclass(frozen=True)
+class BeltClass:
+    """A conveyor belt type: strength, carcass and stiffness per metre of belt width.
+
+    Attributes:
+        name: designation, e.g. ``"ST1250"`` or ``"EP630/4"``.
+        strength: rated (minimum breaking) strength k_N, N per m of width (ST1250:
+            1.25e6 N/m = 1250 N/mm).
+        carcass_mass: carcass (cords or plies with their rubber) per m², kg/m².
+        carcass_thickness: m (steel cord: the cord diameter; fabric: the plies).
+        modulus: axial stiffness per metre of width, N/m (EA of a 1 m wide belt, N per unit
+            strain).
+        top_cover, bottom_cover: default cover thicknesses, m.
+        cord_diameter: steel cord diameter, m (0 for fabric belts); sets the minimum
+            pulley diameter (:func:`pulley_radius_for`).
+    """
+
+    name: str
+    strength: float
+    carcass_mass: float
+    carcass_thickness: float
+    modulus: float
+    top_cover: float
+    bottom_cover: float
+    cord_diameter: float = 0.0
+
+    def mass_per_length(self, width: float, top_cover: Optional[float] = None,
+                        bottom_cover: Optional[float] = None) -> float:
+        """Belt mass per metre, kg/m: width × (carcass + rubber density × covers)."""
+        top = self.top_cover if top_cover is None else top_cover
+        bottom = self.bottom_cover if bottom_cover is None else bottom_cover
+        return width * (self.carcass_mass + RUBBER_DENSITY * (top + bottom))
+
+    def axial_stiffness(self, width: float) -> float:
+        """EA of a belt ``width`` m wide, N."""
+        return self.modulus * width
+
+
+def _steel(kn: int, d_mm: float, pitch_mm: float, top: float = 0.006, bottom: float = 0.005) -> BeltClass:
+    d, t = d_mm * 1e-3, pitch_mm * 1e-3
+    steel = CORD_FILL * math.pi * d * d / 4 / t  # m² of steel per m of width
+    return BeltClass(
+        name=f"ST{kn}", strength=kn * 1e3,
+        carcass_mass=RUBBER_DENSITY * d + (STEEL_DENSITY - RUBBER_DENSITY) * steel,
+        carcass_thickness=d, modulus=0.1 * kn * 1e3 / 0.0015, top_cover=top, bottom_cover=bottom,
+        cord_diameter=d,
+    )
+
+
+def _fabric(kn: int, plies: int, ply_mm: float, top: float = 0.006, bottom: float = 0.002) -> BeltClass:
+    s = plies * ply_mm * 1e-3
+    return BeltClass(
+        name=f"EP{kn}/{plies}", strength=kn * 1e3, carcass_mass=RUBBER_DENSITY * s, carcass_thickness=s,
+        modulus=0.1 * kn * 1e3 / 0.010, top_cover=top, bottom_cover=bottom,
+    )
+
+
+#: The catalogue: **typical values**, not a manufacturer's data sheet (catalogues differ by
+#: 10-20 %; use your belt's data via :class:`BeltClass` for a design).
+#:
+#: * Steel cord (ST, DIN 22131 / ISO 15236 classes): cord diameter and pitch as typically
+#:   published for DIN 22131 belts; carcass = core rubber over the cord diameter plus the
+#:   steel (60 % of each cord's circle); covers 6 + 5 mm. Modulus from an elastic elongation
+#:   of 0.15 % at the reference load of 10 % of k_N (steel cord belts: 0.1-0.25 %), i.e.
+#:   EA ≈ 67 × k_N per metre of width.
+#: * Fabric EP (polyester-polyamide plies, DIN 22102 / ISO 14890 classes): plies of
+#:   1.0-1.6 mm by ply strength, rubber-density carcass; covers 6 + 2 mm. Modulus from an
+#:   elastic elongation of 1.0 % at 10 % of k_N (DIN 22102 allows up to 1.5 % total,
+#:   permanent part included), i.e. EA = 10 × k_N per metre of width.
+BELTS: dict[str, BeltClass] = {b.name: b for b in [
+    _steel(630, 3.0, 10.0), _steel(800, 3.85, 15.0), _steel(1000, 3.85, 12.0), _steel(1250, 4.5, 14.0),
+    _steel(1600, 5.85, 15.0), _steel(2000, 5.85, 12.0), _steel(2500, 7.0, 15.0), _steel(3150, 8.0, 15.0),
+    _steel(3500, 8.6, 15.0), _steel(4000, 9.0, 15.0), _steel(4500, 9.7, 16.0), _steel(5000, 10.9, 17.0),
+    _steel(5400, 11.3, 17.0),
+    _fabric(400, 3, 1.1), _fabric(500, 3, 1.2), _fabric(630, 3, 1.4), _fabric(630, 4, 1.2),
+    _fabric(800, 4, 1.4), _fabric(1000, 4, 1.6),
+]}
+
+#: Standard drum diameters, m (DIN 22101 / ISO 1536 series), the builder rounds up to.
+DRUM_DIAMETERS = (0.4, 0.5, 0.63, 0.8, 1.0, 1.25, 1.4, 1.6, 1.8, 2.0)
+
+
+def pulley_radius_for(belt: BeltClass) -> float:
+    """Drive drum radius chosen for ``belt``, m: DIN 22101's minimum drum diameter
+    D ≥ C_Tr · d (C_Tr = 145 for steel cord with d the cord diameter, 108 for EP fabric with d
+    the carcass thickness), rounded up to the next standard diameter (:data:`DRUM_DIAMETERS`)."""
+    need = 145.0 * belt.cord_diameter if belt.cord_diameter > 0 else 108.0 * belt.carcass_thickness
+    for d in DRUM_DIAMETERS:
+        if d >= need * (1 - 1e-9):
+            return d / 2
+    return math.ceil(need * 10) / 20
+
+
+@dataclass
+class IdlerSet:
+    """Idler stations of one strand.
+
+    Attributes:
+        pitch: spacing along the strand, m, > 0.
+        troughing: troughing angle of the side rolls, rad (0 for a flat return roll). The
+            engine is planar: troughing does not change the dynamics; it is recorded for
+            the user and for CEMA/DIN look-ups. Default 35° (carry), 0 (return).
+        rotating_mass: rotating mass of the rolls of one station, kg, >= 0 (DIN's m'_R =
+            this / pitch). Default 20 kg (three 133 mm rolls for a 1 m belt).
+        roll_diameter: m. Default 0.133.
+    """
+
+    pitch: float = 1.2
+    troughing: float = math.radians(35.0)
+    rotating_mass: float = 20.0
+    roll_diameter: float = 0.133
+
+    def validate(self, where: str) -> None:
+        check(f"{where}.pitch", self.pitch, positive=True, unit="m")
+        check(f"{where}.troughing", self.troughing, high=math.pi / 2, unit="rad")
+        check(f"{where}.rotating_mass", self.rotating_mass, unit="kg per station")
+        check(f"{where}.roll_diameter", self.roll_diameter, positive=True, unit="m")
+
+
+def _return_default() -> IdlerSet:
+    return IdlerSet(pitch=3.0, troughing=0.0, rotating_mass=15.0)
+
+
+LOCATIONS = ("head", "tail")
+
+
+@dataclass
+class DriveSpec:
+    """A drive at a pulley.
+
+    Attributes:
+        location: ``"head"`` or ``"tail"``. Default "head".
+        share: its part of the steady peripheral force in the static calculation, in (0, 1];
+            the shares of all drives add up to 1. Default 1.
+        start_curve: the starting curve (belt speed, positive, m/s). Default None: Harrison,
+            10 s to the conveyor's speed. Each drive holds its curve (ideal speed control;
+            several speed-held drives share the load by the belt's elasticity, not by a set
+            share).
+        power: rated motor power, W, > 0. Default None: chosen (:meth:`Conveyor.motor_power`):
+            the larger of 1.25 × share × F_U × v (steady running with a 25 % margin) and
+            the rigid-body start force share × (M_eq · a_max + F_U) × v / (0.9 ×
+            ``torque_limit``) (the start curve followed within the torque limit with 10 %
+            to spare), rounded up to 1 kW.
+        torque_limit: the motor's current limit, × its rated torque. Default 1.6.
+        inertia: motor and coupling inertia at the motor shaft, kg·m², with the motor's
+            rated speed ``motor_speed`` (reduced to the drum through the gearbox ratio).
+            Default 0.
+        motor_speed: rated motor speed, rad/s. Default 1500 rpm.
+    """
+
+    location: str = "head"
+    share: float = 1.0
+    start_curve: Optional[StartCurve] = None
+    power: Optional[float] = None
+    torque_limit: float = 1.6
+    inertia: float = 0.0
+    motor_speed: float = 1500.0 * 2 * math.pi / 60
+
+    def validate(self, where: str) -> None:
+        if self.location not in LOCATIONS:
+            raise SceneError(f"{where}.location = {self.location!r}: must be \"head\" or \"tail\"")
+        check(f"{where}.share", self.share, positive=True, high=1.0, unit="share of F_U")
+        if self.power is not None:
+            check(f"{where}.power", self.power, positive=True, unit="W")
+        check(f"{where}.torque_limit", self.torque_limit, positive=True, unit="x rated torque")
+        check(f"{where}.inertia", self.inertia, unit="kg*m^2")
+        check(f"{where}.motor_speed", self.motor_speed, positive=True, unit="rad/s")
+        if self.start_curve is not None and not isinstance(self.start_curve, StartCurve):
+            raise SceneError(f"{where}.start_curve = {self.start_curve!r}: expected a beltrs.StartCurve")
+
+
+@dataclass
+class TakeupSpec:
+    """A gravity takeup on the head or tail pulley, pulling in line with the strands (the
+    pulley slides away from the conveyor; each strand then carries exactly half the pull).
+
+    Attributes:
+        location: ``"tail"`` (default) or ``"head"``.
+        tension: tension it holds in each strand, N, > 0. Default None: chosen (see
+            :meth:`Conveyor.takeup_tension`).
+        travel: travel allowed each way from the start, m (hard stops). Default inf.
+    """
+
+    location: str = "tail"
+    tension: Optional[float] = None
+    travel: float = math.inf
+
+    def validate(self, where: str) -> None:
+        if self.location not in LOCATIONS:
+            raise SceneError(f"{where}.location = {self.location!r}: must be \"head\" or \"tail\"")
+        if self.tension is not None:
+            check(f"{where}.tension", self.tension, positive=True, unit="N per strand")
+        check(f"{where}.travel", self.travel, positive=True, finite=False, unit="m")
+
+
+@dataclass
+class Conveyor:
+    """A belt conveyor described as an engineer does (``docs/conveyor-builder.md``).
+
+    Attributes:
+        profile: stations (distance, elevation), m, along the carry strand from the tail
+            pulley (first) to the head pulley (last): where the belt's centre line runs on
+            the carry idlers. At least two; distances increasing.
+        curve_radii: vertical curve radius at each interior station, m (concave or convex,
+            tangent to both neighbouring straights, :class:`beltrs.layout.Profile`). A
+            station where the slope changes needs a radius larger than the drum diameter.
+            Default: none (no interior stations).
+        belt: a :data:`BELTS` name (``"ST1250"``, ``"EP630/4"``) or a :class:`BeltClass`.
+            Default "ST1250".
+        width: belt width, m. Default 1.0.
+        top_cover, bottom_cover: cover thicknesses, m. Default: the belt class's.
+        speed: belt speed, m/s, > 0. Default 2.
+        capacity: material flow, t/h, >= 0. m'_L = capacity / (3.6 · speed) kg/m on the
+            loaded carry strand. Default 0.
+        loading: loading point, m along the carry profile from the tail. Default 5.
+        discharge: discharge point, m along the carry profile. Default None (the head).
+        carry: carry idlers. Default :class:`IdlerSet` (1.2 m, 35°, 20 kg).
+        returns: return idlers. Default 3 m, flat, 15 kg.
+        f: DIN 22101 artificial friction coefficient at every idler. Default 0.02.
+        drives: :class:`DriveSpec` list. Default one head drive.
+        takeup: :class:`TakeupSpec`. Default a tail gravity takeup with a chosen tension.
+        pulley_radius: head and tail drum radius, m. Default None: :func:`pulley_radius_for`.
+        lagging: belt friction on the drums, (static, kinetic). Default (0.4, 0.35), rubber
+            lagging.
+        element_length: target element length, m. Default None: the smaller of a quarter of
+            the carry pitch and 30° of arc on the drums.
+        damping_ratio: belt's axial damping, fraction of critical per element. Default 0.05.
+        gravity: m/s². Default 9.81.
+    """
+
+    profile: Sequence[Sequence[float]] = ((0.0, 0.0), (100.0, 0.0))
+    curve_radii: Sequence[float] = ()
+    belt: Union[str, BeltClass] = "ST1250"
+    width: float = 1.0
+    top_cover: Optional[float] = None
+    bottom_cover: Optional[float] = None
+    speed: float = 2.0
+    capacity: float = 0.0
+    loading: float = 5.0
+    discharge: Optional[float] = None
+    carry: IdlerSet = field(default_factory=IdlerSet)
+    returns: IdlerSet = field(default_factory=_return_default)
+    f: float = 0.02
+    drives: list[DriveSpec] = field(default_factory=lambda: [DriveSpec()])
+    takeup: TakeupSpec = field(default_factory=TakeupSpec)
+    pulley_radius: Optional[float] = None
+    lagging: Sequence[float] = (0.4, 0.35)
+    element_length: Optional[float] = None
+    damping_ratio: float = 0.05
+    gravity: float = 9.81
+
+    # --- derived quantities -------------------------------------------------------------
+    @property
+    def belt_class(self) -> BeltClass:
+        """The :class:`BeltClass` (looked up by name)."""
+        if isinstance(self.belt, BeltClass):
+            return self.belt
+        if isinstance(self.belt, str) and self.belt in BELTS:
+            return BELTS[self.belt]
+        raise SceneError(f"belt = {self.belt!r}: unknown belt class (known: {', '.join(BELTS)}), "
+                         "or give a beltrs.conveyor.BeltClass")
+
+    @property
+    def belt_mass(self) -> float:
+        """m'_G, kg/m."""
+        return self.belt_class.mass_per_length(self.width, self.top_cover, self.bottom_cover)
+
+    @property
+    def material_mass(self) -> float:
+        """m'_L = capacity / (3.6 · speed), kg/m (capacity t/h, speed m/s)."""
+        return self.capacity / (3.6 * self.speed)
+
+    @property
+    def radius(self) -> float:
+        """Head and tail drum radius, m."""
+        return pulley_radius_for(self.belt_class) if self.pulley_radius is None else float(self.pulley_radius)
+
+    @property
+    def carry_profile(self) -> Profile:
+        """The carry strand's :class:`beltrs.layout.Profile`."""
+        return Profile(self.profile, list(self.curve_radii) if len(self.profile) > 2 else None)
+
+    @property
+    def chosen_element_length(self) -> float:
+        """Element length the scene uses, m (``element_length``, or the choice documented
+        there)."""
+        if self.element_length is not None:
+            return float(self.element_length)
+        return min(self.carry.pitch / 4, self.radius * math.pi / 6)
+
+    def validate(self) -> None:
+        """Check every field; raise :class:`beltrs.SceneError` naming the first bad one."""
+        pts = self.profile
+        if hasattr(pts, "tolist"):
+            pts = pts.tolist()
+        if isinstance(pts, (str, bytes)) or not isinstance(pts, Sequence) or len(pts) < 2:
+            raise SceneError(f"profile = {pts!r}: need at least two stations (distance, elevation), m")
+        for i, p in enumerate(pts):
+            if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
+                raise SceneError(f"profile[{i}] = {p!r}: expected (distance, elevation), m")
+            check(f"profile[{i}][0]", p[0], low=-math.inf, unit="m")
+            check(f"profile[{i}][1]", p[1], low=-math.inf, unit="m")
+            if i and not float(p[0]) > float(pts[i - 1][0]):
+                raise SceneError(f"profile[{i}][0] = {p[0]!r}: station distances must increase "
+                                 f"(the previous is {pts[i - 1][0]!r})")
+        if len(self.curve_radii) != max(0, len(pts) - 2):
+            raise SceneError(f"curve_radii = {list(self.curve_radii)!r}: need one radius per interior station "
+                             f"({len(pts) - 2})")
+        bc = self.belt_class
+        check("width", self.width, positive=True, unit="m")
+        for name in ("top_cover", "bottom_cover"):
+            if getattr(self, name) is not None:
+                check(name, getattr(self, name), unit="m")
+        check("speed", self.speed, positive=True, unit="m/s")
+        check("capacity", self.capacity, unit="t/h")
+        check("f", self.f, unit="dimensionless")
+        check("damping_ratio", self.damping_ratio, unit="fraction of critical")
+        check("gravity", self.gravity, positive=True, unit="m/s^2")
+        self.carry.validate("carry")
+        self.returns.validate("returns")
+        if self.pulley_radius is not None:
+            check("pulley_radius", self.pulley_radius, positive=True, unit="m")
+        if self.element_length is not None:
+            check("element_length", self.element_length, positive=True, unit="m")
+        if len(self.lagging) != 2:
+            raise SceneError(f"lagging = {self.lagging!r}: expected (static, kinetic)")
+        mus = check("lagging[0]", self.lagging[0], unit="dimensionless")
+        muk = check("lagging[1]", self.lagging[1], unit="dimensionless")
+        if muk > mus:
+            raise SceneError(f"lagging[1] = {muk!r}: the kinetic coefficient must be <= the static {mus!r}")
+        if not self.drives:
+            raise SceneError("drives = []: a conveyor needs at least one drive")
+        for i, d in enumerate(self.drives):
+            d.validate(f"drives[{i}]")
+        places = [d.location for d in self.drives]
+        if len(set(places)) != len(places):
+            raise SceneError(f"drives = {places!r}: one drive per pulley (a second motor on one drum is "
+                             "one drive with the summed power)")
+        shares = sum(d.share for d in self.drives)
+        if abs(shares - 1) > 1e-9:
+            raise SceneError(f"drives[*].share = {[d.share for d in self.drives]!r}: must add up to 1")
+        self.takeup.validate("takeup")
+        prof = self.carry_profile  # validates the curve radii (SceneError naming them)
+        r = self.radius
+        for i, radius in enumerate(self.curve_radii):
+            if _turn(pts, i + 1) != 0.0 and not radius > 2 * r:
+                raise SceneError(f"curve_radii[{i}] = {radius!r}: the slope changes at station {i + 1}; its "
+                                 f"curve radius must exceed the drum diameter {2 * r:g} m (the return strand "
+                                 "runs a drum diameter below the carry strand)")
+        length = prof.length
+        check("loading", self.loading, high=length, unit=f"m along the carry profile, <= {length:.6g}")
+        if self.discharge is not None:
+            check("discharge", self.discharge, low=self.loading, high=length,
+                  unit=f"m along the carry profile, after loading, <= {length:.6g}")
+        pitch = max(self.carry.pitch, self.returns.pitch)
+        if pitch > 0.5 * length:
+            raise SceneError(f"carry.pitch, returns.pitch = {self.carry.pitch!r}, {self.returns.pitch!r}: "
+                             f"the strands ({length:.6g} m) need at least two idlers")
+        le = self.chosen_element_length
+        if any(_turn(pts, i) != 0.0 for i in range(1, len(pts) - 1)) and le > GUIDE_RADIUS * r:
+            raise SceneError(f"element_length = {le!r}: with vertical curves at most {GUIDE_RADIUS} x the drum "
+                             f"radius ({GUIDE_RADIUS * r:g} m): the curve guides must each hold an element")
+        if le > self.carry.pitch / 2:
+            raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
+                             f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
+                             "(a quarter or less is advised, docs/stability.md)")
+        del bc
+
+    # --- the static calculation ---------------------------------------------------------
+    def loop(self, takeup_tension: Optional[float] = None) -> list[Union[statics.Section, statics.Point]]:
+        """The belt loop as :mod:`beltrs.statics` sections and points, in the direction of
+        travel from the tail: tail pulley, carry sections (split at the loading and
+        discharge points and at the profile's straights and curves), head pulley, return
+        sections. Pulley wraps have no length; the idlered strands run the profile's whole
+        length (the builder puts idlers from half a pitch after the tail to half a pitch
+        before the head)."""
+        self.validate()
+        prof = self.carry_profile
+        ml = self.material_mass
+        t_up = self.takeup_tension() if takeup_tension is None else takeup_tension
+        v = self.speed
+        cuts = sorted({0.0, prof.length, float(self.loading),
+                       float(prof.length if self.discharge is None else self.discharge)}
+                      | set(_piece_ends(prof)))
+        discharge = prof.length if self.discharge is None else float(self.discharge)
+        carry, back = [], []
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            if b - a <= 1e-9:
+                continue
+            lift = float(prof.point(b)[0][1] - prof.point(a)[0][1])
+            loaded = ml if (self.loading <= a and b <= discharge + 1e-9) else 0.0
+            carry.append((a, statics.Section(b - a, lift, "carry", loaded, self.carry.rotating_mass / self.carry.pitch,
+                                             self.carry.pitch, name=f"carry {a:.6g}-{b:.6g} m")))
+            back.append(statics.Section(b - a, -lift, "return", 0.0, self.returns.rotating_mass / self.returns.pitch,
+                                        self.returns.pitch, name=f"return {b:.6g}-{a:.6g} m"))
+        share = {d.location: d.share for d in self.drives}
+        tu = self.takeup.location
+
+        def pulley(name: str) -> statics.Point:
+            return statics.Point(name, drive=share.get(name, 0.0), takeup=t_up if tu == name else None)
+
+        items: list[Union[statics.Section, statics.Point]] = [pulley("tail")]
+        for a, s in carry:
+            if a == self.loading and ml > 0:
+                items.append(statics.Point("loading", resistance=ml * v * v))
+            items.append(s)
+        items.append(pulley("head"))
+        items.extend(reversed(back))
+        return items
+
+    def statics(self, method: Optional[statics.Method] = None,
+                takeup_tension: Optional[float] = None) -> statics.TensionProfile:
+        """Steady-running tensions at every point (:func:`beltrs.statics.tensions`) by
+        ``method`` (default DIN 22101 with this conveyor's ``f``). Distances run from the
+        tail pulley along the carry strand, then back along the return strand."""
+        method = statics.DIN22101(self.f, self.gravity) if method is None else method
+        return statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+
+    def takeup_tension(self) -> float:
+        """Takeup tension per strand, N: ``takeup.tension``, or the smallest that meets
+        (DIN 22101's two minimum-tension rules, with the design values stated here):
+
+        * grip at every drive in a start: T2 ≥ F_A,i / (e^{µ·θ} − 1), with F_A,i the
+          drive's share of the larger of DIN's starting force 1.5 · F_U and the rigid-belt
+          start force M_eq · a_max + F_U (:meth:`start_force`), µ the lagging's kinetic
+          coefficient and θ = π (a simple head or tail drum);
+        * sag between idlers: T ≥ (m'_G + m'_L) · g · a / (8 · h_rel) on the carry strand
+          and m'_G · g · a_r / (8 · h_rel) on the return strand, h_rel = 1 % of the pitch;
+
+        rounded up to the next kN.
+        """
+        if self.takeup.tension is not None:
+            return float(self.takeup.tension)
+        base = 10e3  # any level: tensions are linear in it
+        p = self.statics(takeup_tension=base)
+        g = self.gravity
+        grip = math.exp(self.lagging[1] * math.pi) - 1
+        starting = max(1.5 * p.effective, self.start_force())
+        share = {d.location: d.share for d in self.drives}
+        raise_by = 0.0
+        for d in p.drives:
+            raise_by = max(raise_by, share[d.name] * starting / grip - d.slack)
+        h = 0.01
+        sag_carry = (self.belt_mass + self.material_mass) * g * self.carry.pitch / (8 * h)
+        sag_return = self.belt_mass * g * self.returns.pitch / (8 * h)
+        carry_min = min(t for t, lab in zip(p.tension, p.label) if lab.startswith(("tail", "carry", "loading")))
+        return_min = min(t for t, lab in zip(p.tension, p.label) if lab.startswith(("head", "return")))
+        raise_by = max(raise_by, sag_carry - carry_min, sag_return - return_min)
+        return float(math.ceil((base + raise_by) / 1e3) * 1e3)
+
+    # --- the scene ----------------------------------------------------------------------
+    def scene(self, *, elements: Optional[int] = None, time_step_fraction: float = 0.5,
+              duration: Optional[float] = None) -> Scene:
+        """The :class:`beltrs.Scene` of this conveyor (choices: ``docs/conveyor-builder.md``).
+
+        Pulleys, in belt order: "tail", the return strand's curve guides, "head", the carry
+        strand's curve guides. A guide ("carry guide 3", "return guide 1") is a small pulley
+        with zero contact stiffness at a vertical curve: the engine places the belt
+        initially along the tangents of its pulleys, and the guides make that placement
+        follow the curve (a polygon within 2 cm of it, on the idlers' side) instead of the
+        straight chord; they exert no force (the idlers carry the belt there).
+
+        Args:
+            elements: belt elements; overrides the chosen element length. Default None.
+            time_step_fraction: of the stability limit. Default 0.5.
+            duration: ``recording.duration``, s. Default: the longest start curve + 5 s.
+        """
+        self.validate()
+        prof = self.carry_profile
+        pts = [tuple(map(float, p)) for p in self.profile]
+        r = self.radius
+        bc = self.belt_class
+        mg, ml = self.belt_mass, self.material_mass
+        d0 = _unit(pts[0], pts[1])
+        d1 = _unit(pts[-2], pts[-1])
+        tail_c = (pts[0][0] + r * d0[1], pts[0][1] - r * d0[0])  # r to the right of travel
+        head_c = (pts[-1][0] + r * d1[1], pts[-1][1] - r * d1[0])
+        lag = Friction(static=float(self.lagging[0]), kinetic=float(self.lagging[1]))
+        t_up = self.takeup_tension()
+        pdyn = self.statics()
+        by_loc = {d.location: d for d in self.drives}
+        drum_mass = self._drum_mass()
+        pulleys: dict[str, Pulley] = {}
+        for name, c, direction in (("tail", tail_c, (-d0[0], -d0[1])), ("head", head_c, d1)):
+            drive = by_loc.get(name)
+            takeup = None
+            if self.takeup.location == name:
+                travel = float(self.takeup.travel)
+                takeup = Takeup(counterweight=2 * t_up / self.gravity, direction=direction,
+                                travel_min=-travel, travel_max=travel)
+            pulleys[name] = Pulley(
+                name=name, center=_round(c), radius=r, mass=drum_mass, inertia=0.8 * drum_mass * r * r,
+                friction=lag, contact_stiffness=1e8, takeup=takeup,
+                drive=None if drive is None else self._drive(drive, pdyn, r))
+        carry_guides, return_guides = _guides(prof, r)
+        plist = [pulleys["tail"], *return_guides, pulleys["head"], *reversed(carry_guides)]
+
+        le = self.chosen_element_length
+        # Half-critical contact damping for one node on the rolls: c = 2*0.5*sqrt(k*m).
+        k_roll = 1e8
+        c_carry = math.sqrt(k_roll * (mg + ml) * le)
+        c_return = math.sqrt(k_roll * mg * le)
+        roll_friction = Friction(static=0.5, kinetic=0.5)
+
+        def rolls(s: IdlerSet, damping: float) -> dict[str, Any]:
+            rr = s.roll_diameter / 2
+            return dict(radius=rr, contact_stiffness=k_roll, contact_damping=damping, friction=roll_friction,
+                        resistance=self.f, rotating_mass=s.rotating_mass, inertia=0.8 * s.rotating_mass * rr * rr)
+
+        idlers = idlers_along(prof, self.carry.pitch, **rolls(self.carry, c_carry))
+        idlers += idlers_along(prof, self.returns.pitch, offset=-2 * r, **rolls(self.returns, c_return))
+        # A roll where a curve guide sits (on the idlers' side of a convex curve) is left out:
+        # the engine refuses overlapping bodies; its neighbours carry that pitch of belt.
+        guides = carry_guides + return_guides
+        idlers = [d for d in idlers if all(
+            math.hypot(d.center[0] - g.center[0], d.center[1] - g.center[1]) > (g.radius + d.radius) * 1.001
+            for g in guides)]
+        loads = []
+        if ml > 0:
+            start = prof.point(self.loading)[0]
+            end = prof.point(prof.length if self.discharge is None else self.discharge)[0]
+            loads.append(Load(mass_per_length=ml, start=_round(start), end=_round(end)))
+        path = 2 * prof.length + 2 * math.pi * r  # near enough for the element count
+        belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
+                    bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
+                    elements=elements if elements is not None else math.ceil(path / le))
+        longest = max((self._curve(d).end for d in self.drives), default=0.0)
+        # A loaded incline has no equilibrium on frictionless drums (the belt would run back):
+        # relax with friction, the held drive drum gripping the belt (stabilise(friction=True)).
+        inclined = any(abs(float(a[1]) - float(b[1])) > 0 for a, b in zip(pts[:-1], pts[1:]))
+        return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
+                     solver=Solver(time_step_fraction=time_step_fraction),
+                     recording=Recording(duration=longest + 5.0 if duration is None else duration, interval=0.05,
+                                         channels=("tension", "node_position"), stabilise_friction=inclined))
+
+    def _curve(self, d: DriveSpec) -> StartCurve:
+        curve = d.start_curve or StartCurve(shape="harrison", speed=self.speed, ramp=10.0)
+        if curve.speed is None or not curve.speed > 0:
+            raise SceneError(f"start_curve.speed = {curve.speed!r}: give the belt speed, positive (m/s); the "
+                             "builder turns it into the drum's clockwise sense")
+        creep = None if curve.creep_speed is None else -curve.creep_speed
+        return replace(curve, speed=-curve.speed, creep_speed=creep)
+
+    def _drive(self, d: DriveSpec, p: statics.TensionProfile, r: float) -> Drive:
+        power = self.motor_power(d.location)
+        ratio = d.motor_speed / (self.speed / r)
+        rated = power / d.motor_speed * ratio  # N*m at the drum
+        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2)
+
+    def motor_power(self, location: str = "head") -> float:
+        """Rated power of the drive at ``location``, W (given, or chosen as
+        :class:`DriveSpec` says)."""
+        for d in self.drives:
+            if d.location == location:
+                if d.power is not None:
+                    return float(d.power)
+                running = d.share * self._running_force()
+                start = d.share * self.start_force()
+                need = max(1.25 * running, start / (0.9 * d.torque_limit)) * self.speed
+                return float(math.ceil(max(need, 1.0) / 1e3) * 1e3)
+        raise SceneError(f"location = {location!r}: no drive there (drives: {[d.location for d in self.drives]})")
+
+    def moving_mass(self) -> float:
+        """M_eq, every moving mass reduced to the belt line, kg (CEMA's rigid-belt start,
+        thesis §1.4): belt over both strands and the drum wraps, material on the loaded
+        length, idler rolls (I/r² = 0.8 × rotating mass, thin tubes), the two drums
+        (0.8 × mass) and the drives' motor inertia through the gearbox."""
+        prof = self.carry_profile
+        r = self.radius
+        discharge = prof.length if self.discharge is None else float(self.discharge)
+        belt = self.belt_mass * (2 * prof.length + 2 * math.pi * r)
+        material = self.material_mass * (discharge - float(self.loading))
+        rolls = 0.8 * (self.carry.rotating_mass * prof.length / self.carry.pitch
+                       + self.returns.rotating_mass * prof.length / self.returns.pitch)
+        drums = 2 * 0.8 * self._drum_mass()
+        motors = sum(d.inertia * (d.motor_speed / self.speed) ** 2 for d in self.drives)  # I ratio^2 / r^2
+        return belt + material + rolls + drums + motors
+
+    def start_force(self) -> float:
+        """Peak drive force of a rigid-belt start along the drives' curves, N:
+        M_eq · a_max + F_U (:func:`beltrs.din22101.rigid_start_force`), a_max the largest
+        acceleration of any drive's start curve."""
+        from .din22101 import rigid_start_force
+
+        a_max = max(self._peak_acceleration(d) for d in self.drives)
+        return rigid_start_force(self.moving_mass(), a_max, self._running_force())
+
+    def _running_force(self) -> float:
+        """DIN 22101's F_U, N (independent of the takeup tension)."""
+        return self.statics(takeup_tension=10e3).effective
+
+    def _peak_acceleration(self, d: DriveSpec) -> float:
+        curve = self._curve(d)
+        t = np.linspace(curve.start, curve.end, 2001)
+        return float(np.max(np.abs(curve.acceleration_at(t))))
+
+    def _drum_mass(self) -> float:
+        """Drum mass, kg: case G's 800 kg for a 0.8 m drum of a 1 m belt, scaled with the
+        drum's surface (radius × width)."""
+        return 800.0 * (self.radius / 0.4) * self.width
+
+
+def _unit(a: Sequence[float], b: Sequence[float]) -> tuple[float, float]:
+    dx, dy = float(b[0]) - float(a[0]), float(b[1]) - float(a[1])
+    n = math.hypot(dx, dy)
+    return dx / n, dy / n
+
+
+def _turn(pts: Sequence[Sequence[float]], i: int) -> float:
+    """Signed turn of the profile at station i, rad (positive: concave, counter-clockwise)."""
+    a, b = _unit(pts[i - 1], pts[i]), _unit(pts[i], pts[i + 1])
+    phi = math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])
+    return 0.0 if abs(phi) < 1e-12 else phi
+
+
+GUIDE_RADIUS = 0.75  #: radius of a curve guide (a zero-contact pulley), × the drum radius
+GUIDE_GAP = 0.02  #: m, largest distance of the initial polygon from a vertical curve
+
+
+def _guides(prof: Profile, r: float) -> tuple[list[Pulley], list[Pulley]]:
+    """Curve guides of the carry and the return strand, each list in the order of travel
+    along the profile (tail to head).
+
+    On each arc of the profile (radius R, turn phi) the belt is placed on a polygon of n
+    sides, n the fewest with a sagitta below GUIDE_GAP. The polygon must lie on the upper
+    side of the idlers (they push up): on a concave curve (centre above) the chords of the
+    arc do, on a convex curve (centre below) the tangent polygon does. The return strand
+    runs 2r further from the centre (concave) or nearer (convex): the same rule holds.
+    A guide's radius is 0.75 r: the engine needs every pulley to hold an element (radius
+    >= element length, at most 30° of the drum's arc = 0.52 r), and the guides of the two
+    strands, 2 r apart, must not overlap."""
+    carry: list[Pulley] = []
+    back: list[Pulley] = []
+    s = 0.0
+    for piece in prof._pieces:
+        if piece.curvature != 0.0:
+            radius = 1.0 / abs(piece.curvature)
+            concave = piece.curvature > 0
+            phi = piece.length / radius
+            n = max(1, math.ceil(phi / math.sqrt(8 * GUIDE_GAP / radius)))
+            centre = prof.point(s)[0] + np.array([-piece.direction[1], piece.direction[0]]) / piece.curvature
+            offset = 2 * r if concave else -2 * r  # the return strand, a drum diameter below
+            for strand, rad, out in (("carry", radius, carry), ("return", radius + offset, back)):
+                # vertex angles, measured from the first tangent point's radius
+                start = prof.point(s)[0] - centre
+                start = start / np.linalg.norm(start)
+                if concave:  # inscribed: vertices on the arc, both tangent points included
+                    verts = [(j * phi / n, rad) for j in range(0, n + 1)]
+                else:  # circumscribed: n sides tangent to the arc; the first and last continue
+                    # the straights, so only the n corners between them are guides
+                    verts = [((j + 0.5) * phi / n, rad / math.cos(phi / (2 * n))) for j in range(n)]
+                sign = 1.0 if piece.curvature > 0 else -1.0
+                for ang, dist in verts:
+                    c, sn = math.cos(sign * ang), math.sin(sign * ang)
+                    u = np.array([c * start[0] - sn * start[1], sn * start[0] + c * start[1]])
+                    vertex = centre + u * dist
+                    inward = -u  # towards the curve's centre
+                    # the belt wraps the guide's outer side, passing through the vertex
+                    out.append(Pulley(
+                        name=f"{strand} guide {len(out) + 1}", center=_round(vertex + inward * GUIDE_RADIUS * r),
+                        radius=GUIDE_RADIUS * r, mass=1.0, inertia=1e-3, contact_stiffness=0.0,
+                        wrap=("cw" if concave else "ccw") if strand == "carry" else ("ccw" if concave else "cw")))
+        s += piece.length
+    return carry, back
+
+
+def _round(p: Sequence[float]) -> tuple[float, float]:
+    return (round(float(p[0]), 9), round(float(p[1]), 9))
+
+
+def _piece_ends(prof: Profile) -> list[float]:
+    out, s = [], 0.0
+    for piece in prof._pieces:
+        s += piece.length
+        out.append(s)
+    return out
+
+
+# --- TOML -------------------------------------------------------------------------------
+def loads(text: str) -> Conveyor:
+    """A :class:`Conveyor` from the text of a TOML file with a ``[conveyor]`` table (keys:
+    the Conveyor fields; ``[conveyor.carry]``, ``[conveyor.returns]``, ``[conveyor.takeup]``
+    tables; ``[[conveyor.drives]]`` with an optional ``start_curve`` table). Unknown keys
+    and wrong types raise :class:`beltrs.SceneError` naming the path."""
+    from .scene_file import _need_reader
+
+    toml = _need_reader()
+    try:
+        data = toml.loads(text)
+    except toml.TOMLDecodeError as err:
+        raise SceneError(f"conveyor file: not valid TOML: {err}") from None
+    except RecursionError:
+        raise SceneError("conveyor file: nested too deeply to read") from None
+    if not isinstance(data, dict) or set(data) != {"conveyor"}:
+        keys = sorted(data) if isinstance(data, dict) else data
+        raise SceneError(f"conveyor file: top-level keys {keys!r}: expected exactly one [conveyor] table")
+    return _read(data["conveyor"])
+
+
+def load(path: Any) -> Conveyor:
+    """A :class:`Conveyor` from a TOML file (see :func:`loads`); ``.scene()`` builds it."""
+    import os
+
+    try:
+        with open(os.fspath(path), encoding="utf-8") as fh:
+            text = fh.read()
+    except OSError as exc:
+        raise SceneError(f"conveyor file {os.fspath(path)!r}: {exc.strerror or exc}") from None
+    return loads(text)
+
+
+def _read(table: Any) -> Conveyor:
+    from .scene import unknown_key_message
+
+    def fields_of(cls: type, data: Any, path: str) -> dict[str, Any]:
+        if not isinstance(data, dict):
+            raise SceneError(f"{path} = {data!r}: expected a table")
+        known = [f for f in cls.__dataclass_fields__]
+        for k in data:
+            if k not in known:
+                raise SceneError(unknown_key_message(f"{path}.{k}", k, known))
+        return dict(data)
+
+    kw = fields_of(Conveyor, table, "conveyor")
+    for key, cls in (("carry", IdlerSet), ("returns", IdlerSet), ("takeup", TakeupSpec)):
+        if key in kw:
+            kw[key] = cls(**fields_of(cls, kw[key], f"conveyor.{key}"))
+    if "drives" in kw:
+        if not isinstance(kw["drives"], list):
+            raise SceneError(f"conveyor.drives = {kw['drives']!r}: expected a list of [[conveyor.drives]] tables")
+        drives = []
+        for i, d in enumerate(kw["drives"]):
+            dk = fields_of(DriveSpec, d, f"conveyor.drives[{i}]")
+            if "start_curve" in dk:
+                from .scene import _read_dataclass
+
+                dk["start_curve"] = _read_dataclass(StartCurve, dk["start_curve"], f"conveyor.drives[{i}].start_curve")
+            drives.append(DriveSpec(**dk))
+        kw["drives"] = drives
+    for key in ("profile", "curve_radii", "lagging"):
+        if key in kw and not isinstance(kw[key], list):
+            raise SceneError(f"conveyor.{key} = {kw[key]!r}: expected a list")
+    c = Conveyor(**kw)
+    c.validate()
+    return c

@@ -1,0 +1,256 @@
+"""beltrs.conveyor: the builder's choices against hand arithmetic, its scenes, its TOML
+form, bad input, and a builder-made conveyor at steady running against beltrs.statics."""
+
+import math
+
+import numpy as np
+import pytest
+
+import beltrs
+from beltrs import conveyor
+from beltrs.analysis import probe_run
+from beltrs.conveyor import BELTS, Conveyor, DriveSpec, IdlerSet, TakeupSpec
+
+L = 150.0
+RAMP = 4.0  # s, Harrison to 2 m/s
+
+
+def short(**kw):
+    """150 m, level, ST1250 1 m wide, 400 t/h at 2 m/s, head drive (Harrison, 4 s)."""
+    kw.setdefault("drives", [DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=RAMP))])
+    return Conveyor(profile=[(0, 0), (L, 0)], belt="ST1250", capacity=400.0, speed=2.0, **kw)
+
+
+def test_belt_catalogue_by_hand():
+    # ST1250: cords 4.5 mm every 14 mm, 60 % steel in each cord's circle:
+    #   steel 0.6 * pi * 0.0045^2 / 4 / 0.014 = 6.8162e-4 m^2 per m of width
+    #   carcass 1150 * 0.0045 + (7850 - 1150) * 6.8162e-4 = 5.1750 + 4.5669 = 9.7419 kg/m^2
+    #   covers (6 + 5) mm * 1150 = 12.65 kg/m^2 -> 22.392 kg/m for 1 m
+    #   EA = 0.1 * 1.25e6 / 0.0015 = 83.33e6 N per m of width
+    st = BELTS["ST1250"]
+    assert st.mass_per_length(1.0) == pytest.approx(22.392, rel=1e-4)
+    assert st.axial_stiffness(1.2) == pytest.approx(1.2 * 83.333e6, rel=1e-4)
+    # EP630/4: 4 plies of 1.2 mm, covers 6 + 2 mm: 1150 * (0.0048 + 0.008) = 14.72 kg/m^2;
+    # EA = 0.1 * 630e3 / 0.01 = 6.3e6 N per m.
+    ep = BELTS["EP630/4"]
+    assert ep.mass_per_length(1.0) == pytest.approx(14.72, rel=1e-9)
+    assert ep.axial_stiffness(1.0) == pytest.approx(6.3e6, rel=1e-9)
+    # Drums: DIN 22101 D >= 145 * d_cord = 652.5 mm -> 800 mm; EP: 108 * 4.8 = 518.4 -> 630 mm.
+    assert conveyor.pulley_radius_for(st) == 0.4
+    assert conveyor.pulley_radius_for(ep) == 0.315
+    assert set(BELTS) >= {"ST630", "ST5400", "EP400/3", "EP1000/4"}
+
+
+def test_builder_choices_by_hand():
+    c = short()
+    # m'_L = 400 t/h / (3.6 * 2 m/s) = 55.556 kg/m
+    assert c.material_mass == pytest.approx(55.556, rel=1e-4)
+    # element: min(1.2 / 4, 0.4 * pi / 6) = min(0.3, 0.20944) = 0.20944 m
+    assert c.chosen_element_length == pytest.approx(0.20944, rel=1e-4)
+    # DIN F_U: m'_R = 20 / 1.2 = 16.667 (carry), 15 / 3 = 5 (return); 0.02 * 9.81 = 0.1962
+    #   carry 0-5 m:  0.1962 * (16.667 + 22.392) * 5 = 38.32
+    #   carry 5-150:  0.1962 * (16.667 + 22.392 + 55.556) * 145 = 2691.7
+    #   return:       0.1962 * (5 + 22.392) * 150 = 806.2;  loading 55.556 * 2^2 = 222.2
+    #   F_U = 3758.4 N
+    p = c.statics(takeup_tension=10e3)
+    assert p.effective == pytest.approx(3758.4, rel=1e-4)
+    # M_eq = belt 22.392 * (300 + 2 pi 0.4) = 6773.8 + material 55.556 * 145 = 8055.6
+    #      + rolls 0.8 * (20 * 150 / 1.2 + 15 * 150 / 3) = 2600 + drums 2 * 0.8 * 800 = 1280
+    #      = 18709.4 kg; Harrison a_max = pi * 2 / (2 * 4) = 0.785398 m/s^2
+    #   start force 18709.4 * 0.785398 + 3758.4 = 18452.7 N
+    assert c.moving_mass() == pytest.approx(18709.4, rel=1e-4)
+    assert c.start_force() == pytest.approx(18452.7, rel=1e-4)
+    # Takeup: grip e^(0.35 pi) - 1 = 2.00287 -> T2 >= 9213 N (T2 = 9193.8 at 10 kN: +19 N);
+    # carry sag (22.392 + 55.556) * 9.81 * 1.2 / 0.08 = 11470 N above the tail's 10 kN: +1470;
+    # return sag 22.392 * 9.81 * 3 / 0.08 = 8237 N < 9194: none. 11470 N -> 12 kN.
+    assert c.takeup_tension() == 12e3
+    # Motor: max(1.25 * 3758.4, 18452.7 / (0.9 * 1.6)) * 2 m/s = 25629 W -> 26 kW.
+    assert c.motor_power("head") == 26e3
+
+
+def test_scene_structure():
+    c = short()
+    s = c.scene()
+    assert [p.name for p in s.pulleys] == ["tail", "head"]
+    tail, head = s.pulleys
+    assert tail.center == (0.0, -0.4) and head.center == (L, -0.4)
+    # Takeup: 12 kN per strand, pulling along the strands away from the head.
+    assert tail.takeup.counterweight * 9.81 == pytest.approx(24e3, rel=1e-12)
+    assert tail.takeup.direction == (-1.0, 0.0)
+    # Drive: clockwise (negative) start curve; torque limit 1.6 x rated 26 kW at the drum:
+    # 26e3 W / (2 m/s / 0.4 m) * 1.6 = 8320 N*m.
+    assert head.drive.start_curve.speed == -2.0
+    assert head.drive.max_torque == pytest.approx(8320.0, rel=1e-12)
+    # Idlers every 1.2 m (125) and 3 m (50) from half a pitch in; f and rotating masses.
+    carry = [d for d in s.idlers if d.center[1] > -0.4]
+    assert len(carry) == 125 and len(s.idlers) == 125 + 50
+    assert all(d.resistance == 0.02 for d in s.idlers)
+    # Half-critical roll damping for one loaded node: sqrt(1e8 * (22.392 + 55.556) * 0.20944)
+    assert carry[0].contact_damping == pytest.approx(math.sqrt(1e8 * 77.948 * 0.20944), rel=1e-4)
+    assert s.loads[0].mass_per_length == pytest.approx(55.556, rel=1e-4)
+    assert s.loads[0].start == (5.0, 0.0) and s.loads[0].end == (L, 0.0)
+    assert s.belt.elements == math.ceil((2 * L + 2 * math.pi * 0.4) / c.chosen_element_length)
+    assert not s.recording.stabilise_friction
+    beltrs.compile(s)
+
+
+def test_curved_profile_places_the_belt_on_its_idlers():
+    # A concave then a convex curve: the belt's initial polygon must lie on the upper side
+    # of every carry roll (idlers push up), within the guides' 2 cm of the curve.
+    c = Conveyor(profile=[(0, 0), (80, 0), (160, 8), (240, 8)], curve_radii=[300, 400], belt="EP630/4",
+                 capacity=200.0, speed=2.0)
+    s = c.scene()
+    assert any(p.name.startswith("carry guide") for p in s.pulleys)
+    assert all(p.contact_stiffness == 0 for p in s.pulleys if "guide" in p.name)
+    assert s.recording.stabilise_friction
+    sim = beltrs.Simulation(s)
+    x = sim.state()["node_position"]  # the initial placement
+    r = c.radius
+    prof = c.carry_profile
+    line = np.array([prof.point(v)[0] for v in np.linspace(0, prof.length, 4001)])
+
+    def carry_line(xs):
+        return np.interp(xs, line[:, 0], line[:, 1])
+
+    upper = x[x[:, 1] > carry_line(x[:, 0]) - r]  # the carry strand (the return runs 2r below)
+    order = np.argsort(upper[:, 0])
+    for d in s.idlers:
+        if d.center[1] < carry_line(d.center[0]) - r:
+            continue  # a return roll
+        belt_y = np.interp(d.center[0], upper[order, 0], upper[order, 1])
+        gap = belt_y - (d.center[1] + d.radius)
+        assert -1e-3 < gap < 0.03, (d.center, gap)
+
+
+def test_toml_description_builds_the_same_scene(tmp_path):
+    text = """
+[conveyor]
+profile = [[0.0, 0.0], [150.0, 0.0]]
+belt = "ST1250"
+capacity = 400.0
+speed = 2.0
+
+[conveyor.carry]
+pitch = 1.2
+
+[conveyor.takeup]
+location = "tail"
+
+[[conveyor.drives]]
+location = "head"
+[conveyor.drives.start_curve]
+shape = "harrison"
+speed = 2.0
+ramp = 4.0
+"""
+    path = tmp_path / "c.toml"
+    path.write_text(text)
+    assert conveyor.load(path).scene().to_dict() == short().scene().to_dict()
+
+
+@pytest.mark.parametrize(
+    "kw,match",
+    [
+        (dict(belt="ST9999"), r"belt = 'ST9999': unknown belt class"),
+        (dict(profile=[(0, 0), (0, 5)]), r"profile\[1\]\[0\] = 0: station distances must increase"),
+        (dict(profile=[(0, 0)]), r"profile = \[\(0, 0\)\]: need at least two stations"),
+        (dict(profile=[(0, 0), (50, 0), (100, 5)], curve_radii=[0.5]), r"curve_radii\[0\] = 0\.5: the slope changes"),
+        (dict(profile=[(0, 0), (50, 0), (100, 5)]), r"curve_radii = \[\]: need one radius per interior station"),
+        (dict(speed=-1.0), r"speed = -1\.0: must be > 0 \(m/s\)"),
+        (dict(capacity=math.nan), r"capacity = nan: must be finite"),
+        (dict(width="wide"), r"width = 'wide': expected a number"),
+        (dict(loading=500.0), r"loading = 500\.0: must be <= 150"),
+        (dict(element_length=0.8), r"element_length = 0\.8: must be at most half the carry pitch"),
+        (dict(carry=IdlerSet(pitch=0.0)), r"carry\.pitch = 0\.0: must be > 0"),
+        (dict(takeup=TakeupSpec(location="middle")), r"takeup\.location = 'middle': must be"),
+        (dict(drives=[DriveSpec("head", share=0.5)]), r"must add up to 1"),
+        (dict(drives=[DriveSpec("head", 0.5), DriveSpec("head", 0.5)]), r"one drive per pulley"),
+        (dict(drives=[]), r"drives = \[\]: a conveyor needs at least one drive"),
+        (dict(lagging=(0.3, 0.4)), r"lagging\[1\] = 0\.4: the kinetic coefficient must be <="),
+    ],
+)
+def test_bad_input_names_field_value_and_rule(kw, match):
+    base = dict(profile=[(0, 0), (L, 0)])
+    base.update(kw)
+    with pytest.raises(beltrs.SceneError, match=match):
+        Conveyor(**base).scene()
+
+
+def test_bad_start_curve_and_toml():
+    c = Conveyor(drives=[DriveSpec(start_curve=beltrs.StartCurve("linear", speed=-2.0, ramp=5.0))])
+    with pytest.raises(beltrs.SceneError, match=r"start_curve\.speed = -2\.0: give the belt speed, positive"):
+        c.scene()
+    with pytest.raises(beltrs.SceneError, match=r"conveyor\.capacty = 'capacty': unknown key, did you mean 'capacity'"):
+        conveyor.loads("[conveyor]\ncapacty = 100.0\n")
+    with pytest.raises(beltrs.SceneError, match=r"speed = 'fast': expected a number"):
+        conveyor.loads('[conveyor]\nspeed = "fast"\n')
+    with pytest.raises(beltrs.SceneError, match=r"expected exactly one \[conveyor\] table"):
+        conveyor.loads("[belt]\nwidth = 1.0\n")
+    with pytest.raises(beltrs.SceneError, match=r"start_curve\.shap = 'shap': unknown key"):
+        conveyor.loads('[conveyor]\n[[conveyor.drives]]\n[conveyor.drives.start_curve]\nshap = "linear"\n')
+    with pytest.raises(beltrs.SceneError, match=r"not valid TOML"):
+        conveyor.loads("[conveyor\n")
+    with pytest.raises(beltrs.SceneError, match=r"conveyor file '/nonexistent/x.toml'"):
+        conveyor.load("/nonexistent/x.toml")
+
+
+def test_steady_running_agrees_with_din_22101():
+    """A builder-made conveyor, started and run to steady speed, against beltrs.statics."""
+    c = short()
+    p = c.statics()
+    sim = beltrs.Simulation(c.scene())
+    sim.stabilise(tolerance=1e-5, max_steps=400_000)
+    r = c.radius
+    probes = [(L - 10.0, 0.0), (L - 10.0, -2 * r)]  # 10 m before / after the head drum
+    data = probe_run(sim, probes, RAMP + 6.0, 0.005)
+    t = data["time"]
+    window = t >= t[-1] - 4.0  # the last 4 s: ~40 periods of the 10 Hz chordal ripple
+    t1, t2 = data["tension"][window].mean(axis=0)
+    # Statics at the same places: the carry probe L - 10 m from the tail along the carry
+    # strand, the return probe 10 m past the head.
+    d1, d2 = p.along(L - 10.0), p.along(L + 10.0)
+    # 3 %: the issue's agreement target. Measured +1.4 % (T1) and -0.5 % (T2): T1 - T2
+    # exceeds DIN by ~0.26 kN, the node model's own loss on the drums (docs/loads.md,
+    # ~0.25 kN for this length in tests/test_case_g.py).
+    assert t1 == pytest.approx(d1, rel=0.03)
+    assert t2 == pytest.approx(d2, rel=0.03)
+    drum = -data["pulley_speed"][:, sim.scene.pulley_index("head")] * r
+    np.testing.assert_allclose(drum[t > RAMP + 0.5], 2.0, rtol=1e-9)  # within its torque limit
+
+
+def test_startup_study_quick():
+    """examples/startup_study.py --quick: 16 starts of a 40 m builder-made conveyor (about
+    10 s of CPU). The physics it must show: a three-times-longer ramp lowers every curve's
+    smooth peak above the steady T1 (rigid body: by 3x; the belt's ringing on top, hence
+    0.7); the linear curve's drive acceleration is v/T; a start stretches the belt, so the
+    takeup moves out (positive travel along its pull)."""
+    import io
+    import runpy
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "examples" / "startup_study.py"
+    mod = runpy.run_path(str(script))
+    out = io.StringIO()
+    rows = mod["study"](mod["QUICK"], out=out)
+    assert len(rows) == 16 and out.getvalue().count("\n| ") == 17  # header + 16 rows
+    by = {(w["shape"], w["ramp"], w["prestart"]): w for w in rows}
+    for shape in mod["SHAPES"]:
+        for pre in (0.0, 0.3):
+            slow, fast = by[(shape, 3.0, pre)], by[(shape, 1.0, pre)]
+            assert slow["peak2"] - slow["t1_din"] < 0.7 * (fast["peak2"] - fast["t1_din"])
+    v = mod["QUICK"]["speed"]
+    assert by[("linear", 1.0, 0.0)]["a_drive"] == pytest.approx(v / 1.0, rel=0.1)
+    assert by[("linear", 3.0, 0.0)]["a_drive"] == pytest.approx(v / 3.0, rel=0.1)
+    assert all(w["takeup"] > 0 and w["p_peak"] > 0 for w in rows)
+
+
+def test_startup_study_scene_file_is_what_the_script_builds():
+    import runpy
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    mod = runpy.run_path(str(examples / "startup_study.py"))
+    full = mod["FULL"]
+    tension, power, _ = mod["design"](full)
+    built = mod["build"](full, mod["curves"](full)[0], tension, power)
+    assert beltrs.load_scene(examples / "startup_study.toml") == built
