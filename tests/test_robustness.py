@@ -361,6 +361,7 @@ def test_cli_prints_no_traceback_for_a_zero_step(tmp_path):
         lambda s: s.run(1e-3, record_every="2"),
         lambda s: s.run(1e-3, record_every=2.5),
         lambda s: s.run(1e-3, record_interval="often"),
+        lambda s: s.run(1.7e308),  # overflows to inf steps (found by the campaign)
         lambda s: s.run(1e-3, max_memory="lots"),
         lambda s: s.run(1e-3, max_samples=3.0),
         lambda s: s.run(1e-3, tension="yes"),
@@ -533,6 +534,13 @@ def test_header_and_declared_length_are_checked_before_the_payload_is_read(tmp_p
 # --- 12. scale guards -------------------------------------------------------------------
 
 
+def test_a_huge_record_interval_records_the_ends_only():
+    # Found by the fuzz campaign: record_interval / dt overflowed to inf (OverflowError).
+    sim = beltrs.Simulation(tiny_scene())
+    res = sim.run(100 * sim.dt, record_interval=1e300, progress=False)
+    assert len(res) == 1
+
+
 def test_a_run_that_would_take_days_is_refused_with_the_estimate():
     sim = beltrs.Simulation(tiny_scene())
     t0 = time.perf_counter()
@@ -547,6 +555,15 @@ def test_a_long_run_shows_progress_even_off_a_terminal(capsys, monkeypatch):
     sim = beltrs.Simulation(tiny_scene())
     sim.run(2000 * sim.dt, record_every=100)
     assert "100.0%" in capsys.readouterr().err
+
+
+def test_a_long_relaxation_shows_progress(capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)  # the built-in bar
+    monkeypatch.setattr(simulation_module, "PROGRESS_AFTER", 1e-6)
+    sim = beltrs.Simulation(beltrs.scenes.hustrulid_loop())
+    report = sim.stabilise()
+    assert report["converged"]
+    assert "steps/s" in capsys.readouterr().err
 
 
 def test_friction_model_none_is_accepted():

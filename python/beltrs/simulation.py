@@ -277,6 +277,7 @@ class Simulation:
         friction: bool = False,
         tolerance: float = 1e-7,
         max_steps: int = 5_000_000,
+        progress: Optional[bool] = None,
     ) -> dict[str, Any]:
         """Relax to static equilibrium (thesis §6.2); simulated time does not advance.
 
@@ -288,6 +289,9 @@ class Simulation:
             tolerance: converged when the largest out-of-balance force is below this
                 fraction of the largest tension. Default 1e-7.
             max_steps: give up after this many relaxation steps.
+            progress: show a progress bar of the relaxation steps (out of ``max_steps``) on
+                stderr. Default None: when stderr is a terminal, or when ``max_steps`` steps
+                would take more than ``PROGRESS_AFTER`` (30 s) of wall time.
 
         Returns:
             dict with ``steps``, ``residual``, ``converged``, ``resets`` and
@@ -303,8 +307,24 @@ class Simulation:
         friction = _flag("friction", friction)
         tolerance = _real("tolerance", tolerance, "must be a finite number > 0", lambda v: v > 0)
         max_steps = _whole("max_steps", max_steps)
+        progress = _flag("progress", progress, none=True)
         with self._exclusive("stabilise"):
-            report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
+            if progress is None and max_steps * _estimate_step_seconds(self._core) > PROGRESS_AFTER:
+                progress = True
+            bar = make_bar(progress, max_steps, self.time)
+            now = self.time  # the callback runs inside the engine's call: no calls back into it
+            shown = [0]
+
+            def tick(done: int) -> None:
+                if done < shown[0]:  # a new stage of the contact-stiffness continuation
+                    shown[0] = 0
+                bar.update(done - shown[0], now)
+                shown[0] = done
+
+            try:
+                report = dict(self._core.stabilise(method, friction, tolerance, max_steps, tick))
+            finally:
+                bar.close()
         if report["interrupted"]:
             return report
         if not report["converged"]:
@@ -390,8 +410,10 @@ class Simulation:
             every = _whole("record_every", record_every, low=1)
         elif record_interval is not None:
             record_interval = _real("record_interval", record_interval, "must be > 0 (s)", lambda v: v > 0)
-            every = max(1, min(int(round(record_interval / dt)), _MAX_STEPS))
-        steps = round(duration / dt)
+            ratio = record_interval / dt  # may overflow to inf: compare before converting
+            every = _MAX_STEPS if not ratio < _MAX_STEPS else max(1, int(round(ratio)))
+        ratio = duration / dt
+        steps = round(ratio) if ratio < _MAX_STEPS else ratio
         if steps > _MAX_STEPS:
             raise _beltrs.SceneError(
                 f"duration = {duration}: {steps:.3e} steps of {dt:.3e} s, more than {_MAX_STEPS:.3e}"

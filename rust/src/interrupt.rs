@@ -30,6 +30,19 @@ struct Hook {
 
 thread_local! {
     static HOOK: RefCell<Option<Hook>> = const { RefCell::new(None) };
+    static DONE: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Report how far a long loop got (e.g. relaxation steps), for the hook to show progress
+/// ([`reported`]).
+#[inline]
+pub fn report(done: u64) {
+    DONE.with(|d| d.set(done));
+}
+
+/// What the current long loop last [`report`]ed on this thread.
+pub fn reported() -> u64 {
+    DONE.with(|d| d.get())
 }
 
 /// Run `f` with `poll` as this thread's interrupt hook (restoring the previous hook after,

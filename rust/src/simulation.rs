@@ -1389,6 +1389,7 @@ impl Simulation {
         let mut resets = 0;
         let mut residual = f64::INFINITY;
         for k in 0..options.max_steps {
+            crate::interrupt::report(k);
             if crate::interrupt::check(self.model.nodes as u64).is_err() {
                 return Ok(StabiliseReport {
                     steps: k,
@@ -1482,6 +1483,7 @@ impl Simulation {
         let mut residual = f64::INFINITY;
         let mut result = Ok(());
         for k in 0..options.max_steps {
+            crate::interrupt::report(k);
             if crate::interrupt::check(self.model.nodes as u64).is_err() {
                 return Ok(StabiliseReport {
                     steps: k,

@@ -89,14 +89,38 @@ fn interruptible<T: Send>(
     py: Python<'_>,
     f: impl FnOnce() -> BeltResult<T> + Send,
 ) -> Interruptible<T> {
+    interruptible_with_progress(py, None, f)
+}
+
+/// [`interruptible`], also calling `progress(done)` at each poll with what the core last
+/// reported ([`crate::interrupt::report`]); an exception from it is ignored, except a
+/// `KeyboardInterrupt`, which stops the call like one from the signal check.
+fn interruptible_with_progress<T: Send>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    f: impl FnOnce() -> BeltResult<T> + Send,
+) -> Interruptible<T> {
     let caught: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
     let hook_caught = caught.clone();
     let hook = move || {
-        Python::attach(|py| match py.check_signals() {
-            Ok(()) => false,
-            Err(e) => {
-                *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
-                true
+        Python::attach(|py| {
+            // A Ctrl-C may land in the callback's Python code: it must not be lost.
+            let shown = match &progress {
+                Some(callback) => callback.call1(py, (crate::interrupt::reported(),)).err(),
+                None => None,
+            };
+            if let Some(e) = shown {
+                if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
+                    return true;
+                }
+            }
+            match py.check_signals() {
+                Ok(()) => false,
+                Err(e) => {
+                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
+                    true
+                }
             }
         })
     };
@@ -288,7 +312,9 @@ impl PySimulation {
 
     /// Relax to static equilibrium. Returns a dict with steps, residual, converged, resets
     /// and interrupted (Ctrl-C stops the relaxation at rest and returns its report).
-    #[pyo3(signature = (method="fire", friction=false, tolerance=1e-7, max_steps=5_000_000))]
+    /// `progress`, if given, is called with the steps of the current relaxation stage
+    /// about every 20 ms.
+    #[pyo3(signature = (method="fire", friction=false, tolerance=1e-7, max_steps=5_000_000, progress=None))]
     fn stabilise<'py>(
         &self,
         py: Python<'py>,
@@ -296,6 +322,7 @@ impl PySimulation {
         friction: bool,
         tolerance: f64,
         max_steps: u64,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let method = match method {
             "fire" => Relaxation::Fire,
@@ -314,7 +341,7 @@ impl PySimulation {
         };
         let mut sim = self.lock(py);
         let sim = &mut *sim;
-        let done = interruptible(py, || sim.stabilise(&options));
+        let done = interruptible_with_progress(py, progress, || sim.stabilise(&options));
         // Ctrl-C ends the relaxation with its report marked interrupted (at rest, on the
         // scene's own model); another exception from a signal handler is raised.
         let report = match (done.result, done.signal) {
