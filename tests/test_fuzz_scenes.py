@@ -302,10 +302,12 @@ def test_overflowing_drive_work_stops_the_run():
     scene["gravity"] = 0.0
     scene["pulleys"][1]["drive"] = {"time": [0.0], "torque": [1e300]}
     sim = _beltrs.Simulation(scene)
-    sim.begin_recording(1, True, True, True, 1000)
-    with pytest.raises(DivergenceError, match=r"step 1\): work done of the drives"):
+    sim.begin_recording(1, True, True, True, 1000, True)  # with the (opt-in) energies
+    # The first sample already holds an infinite kinetic energy of the driven pulley (its
+    # half-step speed is about 1e300 rad/s): it is not kept (only finite rows are).
+    with pytest.raises(DivergenceError, match=r"step 0\): kinetic energy of pulley pulleys\[1\]"):
         sim.advance(300)
-    assert len(sim.recording()["time"]) == 1
+    assert len(sim.recording()["time"]) == 0
 
 
 def test_absurdly_soft_belt_does_not_ask_for_an_endless_continuation():
@@ -321,3 +323,30 @@ def test_absurdly_soft_belt_does_not_ask_for_an_endless_continuation():
         ],
     }
     exercise(scene)
+
+
+# --- the campaign's derandomised subset --------------------------------------------------
+# tests/fuzz_campaign.py mutates scenes through the dataclasses, dicts, TOML text and the raw
+# binding, then calls methods with random (sometimes bad) arguments and changes parameters
+# between runs, each case in a forked child with memory, CPU and wall-clock limits. The full
+# campaign (10^4 cases, docs/runtime.md) runs by hand; CI runs these fixed seeds.
+
+CAMPAIGN_SEEDS = range(0, 80)
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="the campaign forks its cases")
+def test_campaign_subset_has_no_crash_hang_escape_or_silent_non_finite():
+    import fuzz_campaign
+
+    records = [fuzz_campaign.run_in_child(seed) for seed in CAMPAIGN_SEEDS]
+    bad = [
+        r
+        for r in records
+        if r["outcome"] not in ("ok", "beltrs_error")
+        # Wrong types in dataclass fields and TOML nested thousands deep are the scene-schema
+        # rewrite's (issue 10); they are counted apart until it lands.
+        and not (r["outcome"] == "other_exception" and r.get("owner") == "scene schema")
+    ]
+    assert bad == [], bad
+    outcomes = {r["outcome"] for r in records}
+    assert {"ok", "beltrs_error"} <= outcomes  # the subset exercises both

@@ -15,7 +15,7 @@ from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWar
 from .result import Result, load_result
 from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 from .scene_file import load_scene
-from .simulation import Simulation
+from .simulation import CheckpointWarning, Simulation
 
 __all__ = [
     "DEFAULT_CONTACT_DAMPING_RATIO",
@@ -25,6 +25,7 @@ __all__ = [
     "BeltrsWarning",
     "Brake",
     "CheckpointError",
+    "CheckpointWarning",
     "DivergenceError",
     "DriveDirectionWarning",
     "Drive",

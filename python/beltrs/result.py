@@ -170,6 +170,8 @@ class Result:
         metadata: free-form facts saved with the result (``beltrs run`` stores the scene
             as TOML, the beltrs version, the date, relaxation figures, ...): str, bool,
             int, float, lists of str, or NumPy arrays. Default empty.
+        checkpoint_error: the last :class:`beltrs.CheckpointError` of a periodic or final
+            checkpoint that could not be written (the run went on), else None.
     """
 
     time: np.ndarray
@@ -198,6 +200,7 @@ class Result:
     pulley_names: list[str] = field(default_factory=list)
     record_every: int = 1
     metadata: dict[str, Any] = field(default_factory=dict)
+    checkpoint_error: Optional[BaseException] = None
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":

@@ -2,26 +2,36 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import numbers
 import os
+import signal
+import sys
+import threading
 import time as _time
+import warnings
 from dataclasses import replace
-from typing import Any, Optional, Union
+from typing import Any, Iterator, Optional, Union
 
 import numpy as np
 
 from . import _beltrs, diagnostics
 from ._checks import warn_scene
-from ._progress import make_bar, make_ticker
+from ._progress import make_bar
 from .model import Model
 from .result import Result
 from .scene import Drive, Friction, Scene
 
-__all__ = ["DEFAULT_MAX_MEMORY", "MAX_RECORD_INTERVAL", "Simulation"]
+__all__ = ["DEFAULT_MAX_MEMORY", "DEFAULT_MAX_WALL_TIME", "MAX_RECORD_INTERVAL", "CheckpointWarning", "Simulation"]
 
 #: Default bound on the memory of a run's recording, bytes (256 MiB); see :meth:`Simulation.run`.
 DEFAULT_MAX_MEMORY = 256 * 2**20
+#: Default bound on a run's estimated wall time, s (one day); see :meth:`Simulation.run`.
+DEFAULT_MAX_WALL_TIME = 86_400.0
+#: A run estimated to take longer than this (s of wall time) shows its progress bar by
+#: default, also when stderr is not a terminal.
+PROGRESS_AFTER = 30.0
 #: Longest default recording interval, s (100 samples per second): see
 #: :meth:`Simulation.default_record_interval`.
 MAX_RECORD_INTERVAL = 0.01
@@ -32,11 +42,100 @@ _MAX_STEPS = 2**63 - 1
 _CHUNK_SECONDS = 0.1
 
 
-def _whole(name: str, value: Any) -> int:
-    """``value`` as an int in [0, 2^63 - 1], else a SceneError naming the argument."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 0 <= value <= _MAX_STEPS:
-        raise _beltrs.SceneError(f"{name} = {value!r}: must be a whole number in [0, 2^63 - 1]")
+class CheckpointWarning(UserWarning):
+    """A checkpoint could not be written during or at the end of a run; the run itself is
+    kept (``Result.checkpoint_error`` holds the error)."""
+
+
+def _whole(name: str, value: Any, low: int = 0) -> int:
+    """``value`` as an int in [low, 2^63 - 1], else a SceneError naming the argument."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not low <= value <= _MAX_STEPS:
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be a whole number in [{low}, 2^63 - 1]")
     return int(value)
+
+
+def _real(name: str, value: Any, rule: str, ok: Any = lambda v: True) -> float:
+    """``value`` as a finite float for which ``ok`` holds, else a SceneError naming the
+    argument, its value and ``rule``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be a number; {rule}")
+    try:
+        v = float(value)
+    except (OverflowError, ValueError):
+        raise _beltrs.SceneError(f"{name} = {value!r}: {rule}") from None
+    if not (np.isfinite(v) and ok(v)):
+        raise _beltrs.SceneError(f"{name} = {value!r}: {rule}")
+    return v
+
+
+def _flag(name: str, value: Any, none: bool = False) -> Any:
+    """``value`` as a bool (or None if ``none``), else a SceneError naming the argument."""
+    if value is None and none:
+        return None
+    if not isinstance(value, (bool, np.bool_)):
+        rule = "True, False or None" if none else "True or False"
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be {rule}")
+    return bool(value)
+
+
+def _path(name: str, value: Any) -> str:
+    """``value`` as a file system path, else a SceneError naming the argument."""
+    if not isinstance(value, (str, os.PathLike)):
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be a path (str or os.PathLike)")
+    path = os.fspath(value)
+    if not isinstance(path, str) or not path or "\0" in path:
+        raise _beltrs.SceneError(f"{name} = {value!r}: must be a non-empty text path")
+    return path
+
+
+class _DeferSignals:
+    """While a run finishes (closing the recording, handing it to the Result, the final
+    checkpoint), a Ctrl-C must not throw away what was simulated. In the main thread this
+    replaces Python's default SIGINT handler by one that raises KeyboardInterrupt once (the
+    first Ctrl-C stops the run) and only counts any later one; the old handler is restored
+    on exit. A user's own handler is left alone."""
+
+    def __init__(self) -> None:
+        self.installed = False
+        self.fired = 0
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        self.fired += 1
+        if self.fired == 1:
+            raise KeyboardInterrupt
+
+    def __enter__(self) -> "_DeferSignals":
+        if threading.current_thread() is threading.main_thread():
+            try:
+                if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+                    signal.signal(signal.SIGINT, self._handler)
+                    self.installed = True
+            except (ValueError, OSError):  # not allowed here (e.g. a sub-interpreter)
+                pass
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.installed:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def _estimate_step_seconds(core: Any) -> float:
+    """Wall time of one step, s, estimated from force evaluations (which do not change the
+    state): the median of three."""
+    times = []
+    for _ in range(3):
+        t0 = _time.perf_counter()
+        core.forces()
+        times.append(_time.perf_counter() - t0)
+    return sorted(times)[1]
+
+
+def _human(seconds: float) -> str:
+    """A wall time in s, min, h or days."""
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
 
 
 def _next_chunk(chunk: int, seconds: float) -> int:
@@ -60,12 +159,31 @@ class Simulation:
     """
 
     def __init__(self, scene: Scene) -> None:
+        if not isinstance(scene, Scene):
+            raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene")
         self.scene = scene
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
         self._placed = True  # still at the initial placement: never relaxed nor run
         warn_scene(scene)
         diagnostics.check_scene(self)
+        self._busy = threading.Lock()
+
+    @contextlib.contextmanager
+    def _exclusive(self, what: str) -> Iterator[None]:
+        """Keeps run, stabilise and step from overlapping (from different threads): a
+        second one raises a BeltrsError at once and changes nothing."""
+        busy = self.__dict__.setdefault("_busy", threading.Lock())
+        if not busy.acquire(blocking=False):
+            raise _beltrs.BeltrsError(
+                f"Simulation.{what}: another run, stabilise or step is in progress on this simulation "
+                "(in another thread); wait for it to return. Reading the state, saving a checkpoint "
+                "or changing parameters from another thread is allowed"
+            )
+        try:
+            yield
+        finally:
+            busy.release()
 
     # --- model facts -------------------------------------------------------------------
     @property
@@ -209,25 +327,53 @@ class Simulation:
             tolerance: converged when the largest out-of-balance force is below this
                 fraction of the largest tension. Default 1e-7.
             max_steps: give up after this many relaxation steps.
-            progress: show the elapsed wall time on stderr while relaxing (one Rust call,
-                so no fraction done), then steps and residual. Default None: only when
-                stderr is a terminal.
+            progress: show a progress bar of the relaxation steps (out of ``max_steps``) on
+                stderr, then a line with the steps and the residual. Default None: when
+                stderr is a terminal, or when ``max_steps`` steps would take more than
+                ``PROGRESS_AFTER`` (30 s) of wall time.
 
         Returns:
-            dict with ``steps``, ``residual``, ``converged``, ``resets``.
+            dict with ``steps``, ``residual``, ``converged``, ``resets`` and
+            ``interrupted``. Ctrl-C stops the relaxation within about 0.1 s and returns its
+            report with ``interrupted`` True and ``converged`` False (the belt at rest
+            where the relaxation had brought it; call again to continue).
 
         Raises:
             beltrs.BeltrsError: if the relaxation does not converge.
         """
+        if not (isinstance(method, str) and method in ("fire", "kinetic")):
+            raise _beltrs.SceneError(f'method = {method!r}: unknown relaxation (known: "fire", "kinetic")')
+        friction = _flag("friction", friction)
+        tolerance = _real("tolerance", tolerance, "must be a finite number > 0", lambda v: v > 0)
         max_steps = _whole("max_steps", max_steps)
-        ticker = make_ticker(progress, "beltrs: relaxing to static equilibrium")
-        try:
-            report = dict(self._core.stabilise(method, friction, tolerance, max_steps))
-        except BaseException:
-            ticker.close("failed")
-            raise
-        ticker.close(f"{report['steps']} steps, residual {report['residual']:.2e}")
+        progress = _flag("progress", progress, none=True)
+        with self._exclusive("stabilise"):
+            if progress is None and max_steps * _estimate_step_seconds(self._core) > PROGRESS_AFTER:
+                progress = True
+            if progress is None:
+                progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+            bar = make_bar(progress, max_steps, self.time)
+            now = self.time  # the callback runs inside the engine's call: no calls back into it
+            shown = [0]
+
+            def tick(done: int) -> None:
+                if done < shown[0]:  # a new stage of the contact-stiffness continuation
+                    shown[0] = 0
+                bar.update(done - shown[0], now)
+                shown[0] = done
+
+            try:
+                report = dict(self._core.stabilise(method, friction, tolerance, max_steps, tick))
+            finally:
+                bar.close()
+            if progress:
+                sys.stderr.write(
+                    f"beltrs: relaxing to static equilibrium: {report['steps']} steps, "
+                    f"residual {report['residual']:.2e}{' (interrupted)' if report['interrupted'] else ''}\n"
+                )
         self._placed = False
+        if report["interrupted"]:
+            return report
         if not report["converged"]:
             raise _beltrs.BeltrsError(
                 f"stabilise did not converge in {report['steps']} steps: residual {report['residual']:.3e} "
@@ -251,6 +397,7 @@ class Simulation:
         progress: Optional[bool] = None,
         checkpoint: Optional[Union[str, os.PathLike]] = None,
         checkpoint_interval: float = 600.0,
+        max_wall_time: Optional[float] = DEFAULT_MAX_WALL_TIME,
     ) -> Result:
         """Run for ``duration`` seconds and return what was recorded.
 
@@ -279,115 +426,181 @@ class Simulation:
                 energy switched off save 8*E, 16*E, 16*E and 56); see :meth:`sample_bytes`.
                 Default 256 MiB.
             progress: show a progress bar on stderr (tqdm if installed, else a built-in
-                one). Default None: only when stderr is a terminal.
-            checkpoint: if given, save a checkpoint to this path (atomically) every
-                ``checkpoint_interval`` seconds of wall time, at the end, and on Ctrl-C.
+                one). Default None: when stderr is a terminal, or when the run is estimated
+                to take more than ``PROGRESS_AFTER`` (30 s) of wall time.
+            checkpoint: if given, save a checkpoint to this path (atomically) before the
+                first step (so a bad path fails at once, before anything is simulated),
+                every ``checkpoint_interval`` seconds of wall time, at the end, and on
+                Ctrl-C. A failure after the first save never costs the run: it gives a
+                :class:`CheckpointWarning`, the run goes on, and the returned Result holds
+                the last error in ``checkpoint_error``.
             checkpoint_interval: wall-clock seconds between checkpoints. Default 600.
+            max_wall_time: refuse the run if its wall time, estimated before the first
+                step from the cost of a force evaluation, exceeds this many seconds (the
+                error gives the estimate). Default one day; None: no bound.
 
         Returns:
-            :class:`Result`. Ctrl-C stops the run cleanly: the Result holds everything
-            recorded so far and ``interrupted`` is True; the state stays consistent, so the
-            run can go on with another ``run``.
+            :class:`Result`. Ctrl-C stops the run within about 0.1 s at a whole step: the
+            Result holds everything recorded so far and ``interrupted`` is True; the state
+            stays consistent, so the run can go on with another ``run``. A second Ctrl-C
+            while the Result is being assembled is ignored (nothing is lost).
 
         Raises:
-            beltrs.DivergenceError: the state became non-finite; the message names time,
-                node and quantity, and ``err.result`` holds what was recorded before.
+            beltrs.SceneError: an argument of the wrong type or out of range, or a run
+                estimated to take longer than ``max_wall_time``.
+            beltrs.CheckpointError: the checkpoint cannot be written before the first step.
+            beltrs.DivergenceError: the state (or a recorded value) became non-finite; the
+                message names time, node and quantity, and ``err.result`` holds what was
+                recorded before (finite rows only).
+            beltrs.BeltrsError: another run, stabilise or step of this simulation is in
+                progress in another thread.
         """
-        duration = float(duration)
-        if not np.isfinite(duration) or duration < 0:
-            raise _beltrs.SceneError(f"duration = {duration}: must be a finite number ≥ 0 (s)")
+        duration = _real("duration", duration, "must be a finite number ≥ 0 (s)", lambda v: v >= 0)
         if record_every is not None and record_interval is not None:
             raise _beltrs.SceneError("give record_every or record_interval, not both")
-        every = max(1, int(round(self.default_record_interval() / self.dt)))
+        tension = _flag("tension", tension)
+        node_position = _flag("node_position", node_position)
+        node_velocity = _flag("node_velocity", node_velocity)
+        energy = _flag("energy", energy)
+        progress = _flag("progress", progress, none=True)
+        dt = self.dt
+        every = max(1, int(round(self.default_record_interval() / dt)))
         if record_every is not None:
-            if int(record_every) < 1:
-                raise _beltrs.SceneError(f"record_every = {record_every}: must be ≥ 1")
-            every = min(int(record_every), _MAX_STEPS)
+            every = _whole("record_every", record_every, low=1)
         elif record_interval is not None:
-            if not (np.isfinite(record_interval) and record_interval > 0):
-                raise _beltrs.SceneError(f"record_interval = {record_interval}: must be > 0 (s)")
-            every = max(1, min(int(round(record_interval / self.dt)), _MAX_STEPS))
-        # Whole steps and at most one shortened step (for the bar and the bound).
-        steps = int(np.ceil(duration / self.dt - 1e-9))
+            record_interval = _real("record_interval", record_interval, "must be > 0 (s)", lambda v: v > 0)
+            ratio = record_interval / dt  # may overflow to inf: compare before converting
+            every = _MAX_STEPS if not ratio < _MAX_STEPS else max(1, int(round(ratio)))
+        # Whole steps and at most one shortened step (for the bar and the bounds).
+        ratio = duration / dt
+        steps = math.ceil(ratio - 1e-9) if ratio < _MAX_STEPS else ratio
         if steps > _MAX_STEPS:
             raise _beltrs.SceneError(
-                f"duration = {duration}: {steps:.3e} steps of {self.dt:.3e} s, more than {_MAX_STEPS:.3e}"
+                f"duration = {duration}: {steps:.3e} steps of {dt:.3e} s, more than {_MAX_STEPS:.3e}"
             )
         per_sample = self.sample_bytes(tension, node_position, node_velocity, energy)
         if max_samples is None:
-            if not (np.isfinite(max_memory) and max_memory > 0):
-                raise _beltrs.SceneError(f"max_memory = {max_memory}: must be a finite number > 0 (bytes)")
-            max_samples = int(max_memory // per_sample)
+            max_memory = _real("max_memory", max_memory, "must be a finite number > 0 (bytes)", lambda v: v > 0)
+            max_samples = int(min(max_memory // per_sample, _MAX_STEPS))
             if max_samples < 2:
                 raise _beltrs.SceneError(
-                    f"max_memory = {max_memory}: must hold at least 2 samples of {per_sample} bytes"
+                    f"max_memory = {max_memory:g}: must hold at least 2 samples of {per_sample} bytes"
                 )
-        elif int(max_samples) < 2:
+        elif isinstance(max_samples, numbers.Integral) and not isinstance(max_samples, bool) and max_samples < 2:
             raise _beltrs.SceneError(f"max_samples = {max_samples}: must be ≥ 2")
-        max_samples = min(int(max_samples), _MAX_STEPS)
-        if checkpoint is not None and not (np.isfinite(checkpoint_interval) and checkpoint_interval >= 0):
-            raise _beltrs.SceneError(f"checkpoint_interval = {checkpoint_interval}: must be ≥ 0 (s)")
+        else:
+            max_samples = _whole("max_samples", max_samples, low=2)
+        if checkpoint is not None:
+            checkpoint = _path("checkpoint", checkpoint)
+            checkpoint_interval = _real("checkpoint_interval", checkpoint_interval, "must be ≥ 0 (s)", lambda v: v >= 0)
+        if max_wall_time is not None:
+            max_wall_time = _real("max_wall_time", max_wall_time, "must be > 0 (s) or None", lambda v: v > 0)
 
+        with self._exclusive("run"):
+            return self._run(
+                duration, steps, every, (tension, node_position, node_velocity, energy), max_samples, progress,
+                checkpoint, checkpoint_interval, max_wall_time,
+            )
+
+    def _run(
+        self,
+        duration: float,
+        steps: int,
+        every: int,
+        channels: tuple[bool, bool, bool, bool],
+        max_samples: int,
+        progress: Optional[bool],
+        checkpoint: Optional[str],
+        checkpoint_interval: float,
+        max_wall_time: Optional[float],
+    ) -> Result:
+        core = self._core
+        estimate = steps * _estimate_step_seconds(core) if steps > 0 else 0.0
+        if max_wall_time is not None and estimate > max_wall_time:
+            raise _beltrs.SceneError(
+                f"duration = {duration:.6g} s: {steps:.3e} steps of {self.dt:.3e} s would take about "
+                f"{_human(estimate)} of wall time here, more than max_wall_time = {_human(max_wall_time)}; "
+                "shorten the run, coarsen the scene, or pass max_wall_time=None to run it anyway"
+            )
+        if progress is None and estimate > PROGRESS_AFTER:
+            progress = True
+        checkpoint_error: Optional[BaseException] = None
+
+        def save(first: bool = False) -> None:
+            nonlocal checkpoint_error
+            if checkpoint is None:
+                return
+            try:
+                self.save_checkpoint(checkpoint)
+            except _beltrs.CheckpointError as err:
+                if first:
+                    raise
+                checkpoint_error = err
+                warnings.warn(f"{err}; the run goes on (Result.checkpoint_error)", CheckpointWarning, stacklevel=4)
+
+        save(first=True)
         if self._placed:
             diagnostics.check_relaxed(self)
             diagnostics.check_idlers(self)
             self._placed = False
 
-        core = self._core
         end = self.time + duration
         t0 = _time.perf_counter()
         last_checkpoint = t0
         interrupted = False
         bar = make_bar(progress, steps, end)
-        try:
-            core.begin_recording(every, tension, node_position, node_velocity, max_samples, energy)
+        with _DeferSignals():
             try:
-                # Short chunks (about 0.1 s of wall time each) keep the bar live and let
-                # Ctrl-C in between them; each chunk runs in Rust without the GIL, and a
-                # chunk always completes, so the state is consistent when Ctrl-C lands.
-                chunk = 64
-                done = False
-                while not done:
-                    before = int(core.step_count)
-                    c0 = _time.perf_counter()
-                    done = core.advance_to(end, chunk)
-                    now = _time.perf_counter()
-                    chunk = _next_chunk(chunk, now - c0)
-                    bar.update(int(core.step_count) - before, self.time)
-                    if checkpoint is not None and now - last_checkpoint >= checkpoint_interval:
-                        self.save_checkpoint(checkpoint)
-                        last_checkpoint = _time.perf_counter()
-            except KeyboardInterrupt:
-                interrupted = True
-            core.end_recording(interrupted)
-            rec, record_every = self._with_final_sample(tension, node_position, node_velocity, interrupted, energy)
-        except _beltrs.DivergenceError as err:
-            err.result = self._result(_time.perf_counter() - t0)  # type: ignore[attr-defined]
-            self.last_result = err.result  # type: ignore[attr-defined]
-            raise
-        finally:
-            bar.close()
-        if checkpoint is not None:
-            self.save_checkpoint(checkpoint)
-        self.last_result = self._result(_time.perf_counter() - t0, rec, record_every)
+                core.begin_recording(every, *channels[:3], max_samples, channels[3])
+                try:
+                    # Short chunks (about 0.1 s of wall time each) keep the bar live and let
+                    # other threads in between them (a checkpoint, a parameter change); each
+                    # chunk runs in Rust without the GIL and polls Ctrl-C every ~20 ms,
+                    # stopping at a whole step, so the state is consistent when it lands.
+                    chunk = 64
+                    done = False
+                    while not done:
+                        before = int(core.step_count)
+                        c0 = _time.perf_counter()
+                        done = core.advance_to(end, chunk)
+                        now = _time.perf_counter()
+                        chunk = _next_chunk(chunk, now - c0)
+                        bar.update(int(core.step_count) - before, self.time)
+                        if checkpoint is not None and now - last_checkpoint >= checkpoint_interval:
+                            save()
+                            last_checkpoint = _time.perf_counter()
+                except KeyboardInterrupt:
+                    interrupted = True
+                core.end_recording(interrupted)
+                rec, record_every = self._with_final_sample(channels, interrupted)
+            except _beltrs.DivergenceError as err:
+                err.result = self._result(  # type: ignore[attr-defined]
+                    _time.perf_counter() - t0, checkpoint_error=checkpoint_error
+                )
+                self.last_result = err.result  # type: ignore[attr-defined]
+                raise
+            finally:
+                bar.close()
+            save()
+            self.last_result = self._result(_time.perf_counter() - t0, rec, record_every, checkpoint_error)
         return self.last_result
 
     def _with_final_sample(
-        self, tension: bool, node_position: bool, node_velocity: bool, interrupted: bool, energy: bool = False
+        self, channels: tuple[bool, bool, bool, bool], interrupted: bool
     ) -> tuple[dict[str, Any], int]:
-        """The recording just closed, with the final state appended when it fell between
-        two instants of the recording grid, so that the last instant is the end of the
-        run; and the grid's interval in steps."""
+        """The recording just closed (taken over from the engine without a copy), with the
+        final state appended when it fell between two instants of the recording grid, so
+        that the last instant is the end of the run; and the grid's interval in steps."""
         core = self._core
-        rec = dict(core.recording())
         every = int(core.record_every)
+        rec = dict(core.take_recording())
         times = np.asarray(rec["time"])
         if len(times) and times[-1] == self.time:
             return rec, every
         # Sample the final state through a fresh one-instant recording and append it.
-        core.begin_recording(1, tension, node_position, node_velocity, 2, energy)
+        core.begin_recording(1, *channels[:3], 2, channels[3])
         core.end_recording(interrupted)
-        last = dict(core.recording())
+        last = dict(core.take_recording())
         for key, value in rec.items():
             if isinstance(value, np.ndarray) and key in last:
                 rec[key] = np.concatenate([value, np.asarray(last[key])], axis=0)
@@ -398,11 +611,27 @@ class Simulation:
     ) -> int:
         """Bytes one recorded instant takes with these channels:
         ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
-        return int(self._core.sample_bytes(tension, node_position, node_velocity, energy))
+        return int(
+            self._core.sample_bytes(
+                _flag("tension", tension),
+                _flag("node_position", node_position),
+                _flag("node_velocity", node_velocity),
+                _flag("energy", energy),
+            )
+        )
 
-    def _result(self, wall: float, rec: Optional[dict[str, Any]] = None, record_every: Optional[int] = None) -> Result:
+    def _result(
+        self,
+        wall: float,
+        rec: Optional[dict[str, Any]] = None,
+        record_every: Optional[int] = None,
+        checkpoint_error: Optional[BaseException] = None,
+    ) -> Result:
+        # The recording's buffers are handed over to NumPy (no copy) and the recorder is
+        # left empty, so the memory of a run is held once.
         return Result._from_core(
-            dict(self._core.recording()) if rec is None else rec,
+            dict(self._core.take_recording()) if rec is None else rec,
+            checkpoint_error=checkpoint_error,
             dt=self.dt,
             stages=self.stages,
             wall_time=wall,
@@ -422,7 +651,7 @@ class Simulation:
             beltrs.CheckpointError: the file cannot be written (the message names the file
                 and the cause).
         """
-        self._core.save_checkpoint(os.fspath(path))
+        self._core.save_checkpoint(_path("path", path))
 
     @classmethod
     def load_checkpoint(cls, path: Union[str, os.PathLike], scene: Optional[Scene] = None) -> "Simulation":
@@ -440,30 +669,58 @@ class Simulation:
             beltrs.CheckpointError: missing, truncated or corrupt file, another format
                 version, or another scene; the message names the file and the problem.
         """
-        core = _beltrs.Simulation.load_checkpoint(os.fspath(path), None if scene is None else scene.to_dict())
+        if scene is not None and not isinstance(scene, Scene):
+            raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene or None")
+        core = _beltrs.Simulation.load_checkpoint(_path("path", path), None if scene is None else scene.to_dict())
         sim = cls.__new__(cls)
         sim._core = core
+        sim._busy = threading.Lock()
         sim.scene = scene if scene is not None else Scene.from_dict(dict(core.scene_dict()))
         sim.last_result = None
         sim._placed = False
         return sim
 
     def step(self, steps: int = 1) -> None:
-        """Advance ``steps`` steps (a whole number ≥ 0) without recording."""
-        self._core.step(_whole("steps", steps))
+        """Advance ``steps`` steps (a whole number ≥ 0) without recording.
+
+        Raises:
+            KeyboardInterrupt: on Ctrl-C, within about 0.1 s, at a whole step (the state is
+                consistent and :attr:`time` tells how far it got).
+            beltrs.DivergenceError: the state became non-finite.
+        """
+        steps = _whole("steps", steps)
+        with self._exclusive("step"):
+            self._core.step(steps)
         self._placed = False
 
     # --- change a parameter and continue ----------------------------------------------
     def set_scene(self, scene: Scene) -> None:
         """Swap in changed parameters and keep the state. The belt discretisation, the
         pulley centres and takeup lines must stay the same."""
+        if not isinstance(scene, Scene):
+            raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene")
         self._core.set_scene(scene.to_dict())
         self.scene = scene
         warn_scene(scene)
         diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
-        return self.scene.pulley_index(pulley) if isinstance(pulley, str) else int(pulley)
+        """The index of ``pulley`` (an index in [0, P) or a name), else a SceneError. A
+        negative index is refused (it would silently pick a pulley from the end)."""
+        names = [p.name for p in self.scene.pulleys]
+        if isinstance(pulley, str):
+            if pulley not in names:
+                raise _beltrs.SceneError(
+                    f"pulley = {pulley!r}: no pulley of that name (names: {names})"
+                )
+            return names.index(pulley)
+        if isinstance(pulley, bool) or not isinstance(pulley, numbers.Integral):
+            raise _beltrs.SceneError(f"pulley = {pulley!r}: must be a pulley index (int) or name (str)")
+        if not 0 <= pulley < len(names):
+            raise _beltrs.SceneError(
+                f"pulley = {pulley}: no such pulley; the scene has {len(names)} (indices 0 to {len(names) - 1})"
+            )
+        return int(pulley)
 
     def _with_pulley(self, pulley: Union[int, str], **changes: Any) -> None:
         j = self._pulley(pulley)
@@ -474,6 +731,7 @@ class Simulation:
     def set_counterweight(self, pulley: Union[int, str], mass: float) -> None:
         """Set the takeup counterweight of ``pulley`` to ``mass`` kg (e.g. a 10 % step)."""
         j = self._pulley(pulley)
+        mass = _real("mass", mass, "must be a finite number ≥ 0 (kg)", lambda v: v >= 0)
         takeup = self.scene.pulleys[j].takeup
         if takeup is None:
             raise _beltrs.SceneError(f"pulleys[{j}].takeup = None: this pulley has no takeup")
@@ -484,16 +742,20 @@ class Simulation:
         curves use absolute simulated time (see :attr:`time`): a speed-controlled drive
         started now is ``Drive(start_curve=StartCurve(..., start=sim.time))``
         (``docs/drives.md``)."""
+        if drive is not None and not isinstance(drive, Drive):
+            raise _beltrs.SceneError(f"drive = {drive!r}: must be a beltrs.Drive or None")
         self._with_pulley(pulley, drive=drive)
 
     def set_friction(self, pulley: Union[int, str], friction: Optional[Friction]) -> None:
         """Set (or remove) belt friction on ``pulley``."""
+        if friction is not None and not isinstance(friction, Friction):
+            raise _beltrs.SceneError(f"friction = {friction!r}: must be a beltrs.Friction or None")
         self._with_pulley(pulley, friction=friction)
 
     # --- profiling ---------------------------------------------------------------------
     def set_profiling(self, on: bool) -> None:
         """Per-stage timing on (zeroed) or off. Off costs nothing."""
-        self._core.set_profiling(bool(on))
+        self._core.set_profiling(_flag("on", on))
 
     def profile(self) -> dict[str, float]:
         """Seconds spent in each stage since profiling was turned on."""

@@ -109,17 +109,18 @@ pub fn encode(sim: &Simulation) -> Vec<u8> {
     out
 }
 
-/// Rebuild a simulation from checkpoint bytes. The scene is recompiled and must give the
-/// same model (node count and time step, bit for bit). Errors describe the problem
-/// (the caller adds the file name).
-pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
-    if bytes.len() < HEADER_BYTES + CHECKSUM_BYTES {
+/// Check the header of a checkpoint file of `total` bytes whose first bytes are `head` (the
+/// whole header, or the whole file if it is shorter): magic, format version, and the
+/// declared payload length against the file's size. Returns the version and the payload
+/// length.
+fn check_header(head: &[u8], total: u64) -> Result<(u32, u64), String> {
+    if total < (HEADER_BYTES + CHECKSUM_BYTES) as u64 {
         return Err(format!(
-            "truncated: {} bytes, shorter than the {}-byte header and checksum",
-            bytes.len(),
+            "truncated: {total} bytes, shorter than the {}-byte header and checksum",
             HEADER_BYTES + CHECKSUM_BYTES
         ));
     }
+    let bytes = head;
     if bytes[0..8] != MAGIC {
         return Err(format!(
             "not a beltrs checkpoint (the file starts with {:?}, expected {:?})",
@@ -135,18 +136,26 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
     }
     let payload_len = u64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
     let expected = (HEADER_BYTES as u64 + CHECKSUM_BYTES as u64).saturating_add(payload_len);
-    if bytes.len() as u64 != expected {
+    if total != expected {
         return Err(format!(
             "{}: the file has {} bytes, its header announces {}",
-            if (bytes.len() as u64) < expected {
+            if total < expected {
                 "truncated"
             } else {
                 "trailing data"
             },
-            bytes.len(),
+            total,
             expected
         ));
     }
+    Ok((version, payload_len))
+}
+
+/// Rebuild a simulation from checkpoint bytes. The scene is recompiled and must give the
+/// same model (node count and time step, bit for bit). Errors describe the problem
+/// (the caller adds the file name).
+pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
+    let (version, payload_len) = check_header(bytes, bytes.len() as u64)?;
     let end = HEADER_BYTES + payload_len as usize;
     let stored = u32::from_le_bytes(bytes[end..end + 4].try_into().expect("4 bytes"));
     let actual = crc32(&bytes[..end]);
@@ -261,7 +270,11 @@ pub fn write_atomic(
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => std::path::PathBuf::from("."),
     };
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    // Unique per call: saves from several threads of one process (or one thread's saves
+    // to the same path) never share a temporary file.
+    static SAVES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let call = SAVES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.{}.{call}.tmp", std::process::id()));
     let write = || -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
@@ -293,8 +306,55 @@ pub fn load(path: &Path) -> BeltResult<Simulation> {
         path: path.display().to_string(),
         problem,
     };
-    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let bytes = read_file(path).map_err(fail)?;
     decode(&bytes).map_err(fail)
+}
+
+/// The bytes of the checkpoint file at `path`, read safely: anything but a regular file is
+/// refused before it is opened (a FIFO would block, `/dev/zero` never ends), the header
+/// is read and checked (magic, version, and the declared length against the file's size)
+/// before anything else, and the rest is read in chunks that poll [`crate::interrupt`].
+fn read_file(path: &Path) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| format!("cannot read: {e}");
+    let regular = |meta: &std::fs::Metadata| -> Result<u64, String> {
+        if meta.is_file() {
+            return Ok(meta.len());
+        }
+        let kind = if meta.is_dir() {
+            "a directory"
+        } else {
+            "a device, FIFO or socket"
+        };
+        Err(format!("not a regular file ({kind})"))
+    };
+    regular(&std::fs::metadata(path).map_err(cannot)?)?;
+    let mut file = std::fs::File::open(path).map_err(cannot)?;
+    // Again on the open file: the path may have been replaced in between.
+    let size = regular(&file.metadata().map_err(cannot)?)?;
+    let mut head = vec![0u8; HEADER_BYTES.min(size as usize)];
+    file.read_exact(&mut head).map_err(cannot)?;
+    check_header(&head, size)?;
+    let mut bytes = head;
+    bytes.reserve_exact(size as usize - bytes.len());
+    const CHUNK: u64 = 1 << 20;
+    loop {
+        let got = (&mut file)
+            .take(CHUNK)
+            .read_to_end(&mut bytes)
+            .map_err(cannot)?;
+        if got == 0 || bytes.len() as u64 > size {
+            break;
+        }
+        crate::interrupt::check(CHUNK / 8).map_err(|_| "interrupted".to_string())?;
+    }
+    if bytes.len() as u64 != size {
+        return Err(format!(
+            "the file changed while it was read ({size} bytes, then {})",
+            bytes.len()
+        ));
+    }
+    Ok(bytes)
 }
 
 /// Load a checkpoint and check that it holds `scene` (e.g. the scene file a user resumes

@@ -50,6 +50,10 @@ pub enum BeltError {
     /// A request that does not fit the compiled model (e.g. an unknown pulley index).
     #[error("{0}")]
     Usage(String),
+    /// The caller's interrupt hook asked to stop ([`crate::interrupt`]); the state is
+    /// consistent (whole steps only).
+    #[error("interrupted")]
+    Interrupted,
 }
 
 /// Shorthand result type.

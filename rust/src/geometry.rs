@@ -199,60 +199,224 @@ impl BeltPath {
     }
 
     /// From arc length `s0`, the arc length of the next point on the path at straight-line
-    /// distance `chord` (searched within `[s0, s0 + 2·chord]`, enough for wraps ≤ 180° per
+    /// distance `chord` (searched within `[s0, s0 + 4·chord]`, enough for wraps ≤ 180° per
     /// chord).
+    ///
+    /// The answer is defined as the result of 60 bisection steps on the predicate
+    /// "closer than `chord`" (so compiled models stay the same to the last bit as they
+    /// always were), but computed in a handful of path evaluations: regula falsi locates
+    /// the crossing first ([`illinois`]), which fixes the outcome of every bisection step
+    /// whose midpoint lies clearly on one side of it; only the midpoints within a few ulps
+    /// of the crossing are evaluated. Compile time was dominated by this search
+    /// (docs/runtime.md, "Scale guards").
     fn next_at_chord(&self, s0: f64, chord: f64) -> f64 {
         let p0 = self.point(s0);
-        let (mut lo, mut hi) = (s0, s0 + chord);
+        let gap = |s: f64| (self.point(s) - p0).norm() - chord;
         // Expand until the chord is reached (arc ≥ chord always, so start at s0 + chord).
-        while (self.point(hi) - p0).norm() < chord && hi < s0 + 4.0 * chord {
-            lo = hi;
+        let (mut lo, mut glo) = (s0, -chord);
+        let mut hi = s0 + chord;
+        let mut ghi = gap(hi);
+        while ghi < 0.0 && hi < s0 + 4.0 * chord {
+            (lo, glo) = (hi, ghi);
             hi += 0.25 * chord;
+            ghi = gap(hi);
         }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if (self.point(mid) - p0).norm() < chord {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+        // Rounding makes "closer than" noisy within a few ulps of the crossing only.
+        let margin = 64.0 * f64::EPSILON * (s0.abs() + chord + p0.amax());
+        let crossing = (ghi >= 0.0).then(|| illinois(lo, glo, hi, ghi, 0.25 * margin, 40, gap));
+        bisect_replayed(lo, hi, 60, crossing, margin, |s| gap(s) < 0.0, |_, _| false)
+    }
+
+    /// [`BeltPath::next_at_chord`] to within a few ulps (not to the bit), by regula falsi
+    /// alone: for the search of the chord length.
+    fn next_at_chord_fast(&self, s0: f64, chord: f64) -> f64 {
+        let p0 = self.point(s0);
+        let gap = |s: f64| (self.point(s) - p0).norm() - chord;
+        let (mut lo, mut glo) = (s0, -chord);
+        let mut hi = s0 + chord;
+        let mut ghi = gap(hi);
+        while ghi < 0.0 && hi < s0 + 4.0 * chord {
+            (lo, glo) = (hi, ghi);
+            hi += 0.25 * chord;
+            ghi = gap(hi);
         }
-        0.5 * (lo + hi)
+        if ghi < 0.0 {
+            return hi;
+        }
+        let tolerance = 8.0 * f64::EPSILON * (s0.abs() + chord + p0.amax());
+        illinois(lo, glo, hi, ghi, tolerance, 40, gap)
     }
 
     /// Place `n` nodes on the path so that all `n` chords (including the closing one) are
     /// equal. Returns the node positions and the common chord length. Starting at s = 0.
-    pub fn equal_chord_nodes(&self, n: usize) -> (Vec<Vector2<f64>>, f64) {
-        let walk = |chord: f64| -> f64 {
+    /// Polls [`crate::interrupt`] as it goes (a million nodes take a few seconds).
+    ///
+    /// The chord is defined by a bisection on "the walk of `n` chords falls short of the
+    /// path" over `[arc/2, arc]` (arc = length/n) down to a width of 10⁻¹³·arc; as in
+    /// [`BeltPath::next_at_chord`], regula falsi on the walk locates the root first, so only
+    /// the last few bisection steps walk the path.
+    pub fn equal_chord_nodes(&self, n: usize) -> BeltResult<(Vec<Vector2<f64>>, f64)> {
+        let stopped = std::cell::Cell::new(false);
+        let walk = |chord: f64, exact: bool| -> f64 {
             let mut s = 0.0;
             for _ in 0..n {
-                s = self.next_at_chord(s, chord);
+                if stopped.get() {
+                    return f64::NAN;
+                }
+                s = if exact {
+                    self.next_at_chord(s, chord)
+                } else {
+                    self.next_at_chord_fast(s, chord)
+                };
+                stopped.set(crate::interrupt::check(WORK_PER_NODE).is_err());
             }
-            s
+            s - self.length
         };
-        // walk(c) increases with c; find walk(c) = length by bisection.
         let arc = self.length / n as f64;
-        let (mut lo, mut hi) = (0.5 * arc, arc);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if walk(mid) < self.length {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-13 * arc {
+        let (lo, hi) = (0.5 * arc, arc);
+        // walk(c) − length is smooth and close to n·c − length. Its root, from walks to a
+        // few ulps per chord: their errors add up like a random walk, about √n·ulp(length).
+        let noise = 16.0 * (n as f64).sqrt() * f64::EPSILON * self.length;
+        let margin = 4.0 * noise / n as f64;
+        // A chord falls short of its arc by at most θ²/24 (θ ≤ 1 rad: elements are no
+        // longer than the smallest radius), so the root lies within 5 % below arc. The walk
+        // is nearly linear in the chord: secant steps from there reach the root to within
+        // the margin in about four walks.
+        let (mut c0, mut f0) = (hi, walk(hi, true));
+        let (mut c1, mut f1) = (0.95 * arc, walk(0.95 * arc, true));
+        for _ in 0..8 {
+            if f1 == f0 || !f1.is_finite() {
                 break;
             }
+            let c2 = (c1 - f1 * (c1 - c0) / (f1 - f0)).clamp(lo, hi);
+            let step = (c2 - c1).abs();
+            (c0, f0) = (c1, f1);
+            c1 = c2;
+            if step <= 0.25 * margin {
+                break;
+            }
+            f1 = walk(c1, true);
         }
-        let chord = 0.5 * (lo + hi);
+        let root = c1;
+        let chord = bisect_replayed(
+            lo,
+            hi,
+            60,
+            Some(root),
+            margin,
+            |c| walk(c, true) < 0.0,
+            |lo, hi| hi - lo < 1e-13 * arc,
+        );
+        if stopped.get() {
+            return Err(BeltError::Interrupted);
+        }
         let mut nodes = Vec::with_capacity(n);
         let mut s = 0.0;
         for _ in 0..n {
             nodes.push(self.point(s));
             s = self.next_at_chord(s, chord);
+            crate::interrupt::check(WORK_PER_NODE)?;
         }
-        (nodes, chord)
+        Ok((nodes, chord))
     }
+}
+
+/// The midpoint of the bracket after `steps` bisection steps on `below(mid)` (true: the
+/// root is above `mid`), stopping early when `done(lo, hi)`. With `crossing` = an estimate of
+/// where `below` turns false, good to within `margin`, a midpoint further than `margin` from
+/// it is decided without calling `below`: the same steps, the same result, far fewer
+/// evaluations.
+fn bisect_replayed(
+    mut lo: f64,
+    mut hi: f64,
+    steps: usize,
+    crossing: Option<f64>,
+    margin: f64,
+    mut below: impl FnMut(f64) -> bool,
+    done: impl Fn(f64, f64) -> bool,
+) -> f64 {
+    for _ in 0..steps {
+        let mid = 0.5 * (lo + hi);
+        if mid == lo || mid == hi {
+            // Converged to adjacent floats: every further step repeats this one.
+            break;
+        }
+        let is_below = match crossing {
+            Some(c) if mid < c - margin => true,
+            Some(c) if mid > c + margin => false,
+            _ => below(mid),
+        };
+        if is_below {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if done(lo, hi) {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Work units ([`crate::interrupt::check`]) of placing one node: about 10 path evaluations.
+const WORK_PER_NODE: u64 = 64;
+
+/// The root of `f` in `[lo, hi]` (with `f(lo) = flo < 0 ≤ fhi = f(hi)`) by regula falsi with
+/// the Illinois modification: stops when `|f| ≤ tolerance`, the bracket can shrink no
+/// further, or after `max_evals` evaluations. If the bracket is not a sign change, its
+/// midpoint.
+fn illinois(
+    mut lo: f64,
+    mut flo: f64,
+    mut hi: f64,
+    mut fhi: f64,
+    tolerance: f64,
+    max_evals: usize,
+    mut f: impl FnMut(f64) -> f64,
+) -> f64 {
+    if !(flo < 0.0 && fhi >= 0.0) {
+        return 0.5 * (lo + hi);
+    }
+    // A root at an end (e.g. a chord along a straight span, found by the first guess):
+    // the secant would fall on that end and degrade to bisection.
+    if fhi <= tolerance {
+        return hi;
+    }
+    if -flo <= tolerance {
+        return lo;
+    }
+    let mut x = hi;
+    let mut side = 0i8;
+    for _ in 0..max_evals {
+        let guess = (lo * fhi - hi * flo) / (fhi - flo);
+        // Falls back to bisection when the secant leaves the bracket (round-off).
+        x = if guess > lo && guess < hi {
+            guess
+        } else {
+            0.5 * (lo + hi)
+        };
+        if !(x > lo && x < hi) {
+            break;
+        }
+        let fx = f(x);
+        if fx.abs() <= tolerance {
+            break;
+        }
+        if fx < 0.0 {
+            (lo, flo) = (x, fx);
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, fhi) = (x, fx);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    x
 }
 
 #[cfg(test)]
@@ -347,7 +511,7 @@ mod tests {
     #[test]
     fn equal_chords_close_the_loop() {
         let path = BeltPath::from_pulleys(&loop_h()).unwrap();
-        let (nodes, chord) = path.equal_chord_nodes(89);
+        let (nodes, chord) = path.equal_chord_nodes(89).unwrap();
         for i in 0..nodes.len() {
             let l = (nodes[(i + 1) % nodes.len()] - nodes[i]).norm();
             assert!(
@@ -356,5 +520,93 @@ mod tests {
             );
         }
         assert!(chord < path.length / 89.0);
+    }
+}
+#[cfg(test)]
+mod placement_reference {
+    //! The chord placement must give, bit for bit, what the plain bisections it replaced
+    //! gave (compiled models, and with them every run, stay the same).
+    use super::*;
+
+    fn reference_next(path: &BeltPath, s0: f64, chord: f64) -> f64 {
+        let p0 = path.point(s0);
+        let (mut lo, mut hi) = (s0, s0 + chord);
+        while (path.point(hi) - p0).norm() < chord && hi < s0 + 4.0 * chord {
+            lo = hi;
+            hi += 0.25 * chord;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if (path.point(mid) - p0).norm() < chord {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    fn reference_nodes(path: &BeltPath, n: usize) -> (Vec<Vector2<f64>>, f64) {
+        let walk = |chord: f64| {
+            let mut s = 0.0;
+            for _ in 0..n {
+                s = reference_next(path, s, chord);
+            }
+            s
+        };
+        let arc = path.length / n as f64;
+        let (mut lo, mut hi) = (0.5 * arc, arc);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if walk(mid) < path.length {
+                lo = mid
+            } else {
+                hi = mid
+            }
+            if hi - lo < 1e-13 * arc {
+                break;
+            }
+        }
+        let chord = 0.5 * (lo + hi);
+        let mut nodes = Vec::with_capacity(n);
+        let mut s = 0.0;
+        for _ in 0..n {
+            nodes.push(path.point(s));
+            s = reference_next(path, s, chord);
+        }
+        (nodes, chord)
+    }
+
+    fn pulley(x: f64, y: f64, radius: f64) -> PulleySpec {
+        PulleySpec {
+            center: [x, y],
+            radius,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn placement_equals_the_reference_bisection_bit_for_bit() {
+        let layouts = [
+            vec![pulley(0.0, 0.0, 1.0), pulley(0.0, 40.0, 1.0)],
+            vec![pulley(0.0, 100.0, 5.0), pulley(0.0, 0.0, 5.0)],
+            vec![
+                pulley(0.0, 0.0, 0.5),
+                pulley(20.0, 3.0, 1.5),
+                pulley(10.0, -6.0, 0.8),
+            ],
+        ];
+        for p in &layouts {
+            let path = BeltPath::from_pulleys(p).unwrap();
+            for n in [89usize, 200, 1000] {
+                if path.length / n as f64 > 0.5 {
+                    continue;
+                }
+                let (nodes, chord) = path.equal_chord_nodes(n).unwrap();
+                let (expected, expected_chord) = reference_nodes(&path, n);
+                assert_eq!(chord.to_bits(), expected_chord.to_bits(), "{n} nodes");
+                assert!(nodes == expected, "{n} nodes");
+            }
+        }
     }
 }

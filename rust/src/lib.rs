@@ -24,6 +24,7 @@ pub mod error;
 pub mod friction;
 pub mod geometry;
 pub mod integrate;
+pub mod interrupt;
 pub mod loads;
 pub mod model;
 pub mod pipeline;

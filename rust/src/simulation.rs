@@ -175,7 +175,7 @@ impl Simulation {
 
     /// Advance `steps` steps without recording.
     pub fn step(&mut self, steps: u64) -> BeltResult<()> {
-        self.steps_with(steps, false, |_| {})
+        self.steps_with(steps, false, |_| Ok(()))
     }
 
     /// `steps` steps of the model's integrator, calling `between` (e.g. record) after each
@@ -184,7 +184,7 @@ impl Simulation {
         &mut self,
         steps: u64,
         tensions: bool,
-        between: impl FnMut(&mut Self),
+        between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<()> {
         match self.model.integrator {
             Integrator::CentralDifference => {
@@ -222,27 +222,40 @@ impl Simulation {
     }
 
     /// Sample if the step counter is on the recording grid, decimating first when full.
-    fn record_if_due(&mut self) {
+    fn record_if_due(&mut self) -> BeltResult<()> {
         if !self.record_counter.is_multiple_of(self.record_every) {
-            return;
+            return Ok(());
         }
         if self.recording.len() >= self.max_samples {
             self.recording.decimate();
             self.record_every = self.record_every.saturating_mul(2);
             if !self.record_counter.is_multiple_of(self.record_every) {
-                return;
+                return Ok(());
             }
         }
         self.recording.reserve_one(self.max_samples);
+        self.sample_finite()
+    }
+
+    /// Take a sample. A finite state can still give non-finite derived values (energies
+    /// of nodes 10^157 m away, forces of an absurd gravity): the run stops, and the
+    /// recording keeps only finite rows.
+    fn sample_finite(&mut self) -> BeltResult<()> {
         self.sample();
+        if let Some((quantity, part)) = self.recording.last_row_non_finite() {
+            self.recording.pop_row();
+            return Err(self.non_finite_sample(quantity, part));
+        }
+        Ok(())
     }
 
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
     /// blow-up the recording keeps everything sampled before it.
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
         self.steps_with(steps, true, |sim| {
-            sim.record_if_due();
+            sim.record_if_due()?;
             sim.record_counter += 1;
+            Ok(())
         })
     }
 
@@ -264,8 +277,9 @@ impl Simulation {
             ));
         }
         let record = |sim: &mut Self| {
-            sim.record_if_due();
+            sim.record_if_due()?;
             sim.record_counter += 1;
+            Ok(())
         };
         match self.model.integrator {
             Integrator::CentralDifference => self.central_difference_to(end, max_steps, record),
@@ -273,24 +287,27 @@ impl Simulation {
     }
 
     /// Close a recording: sample the final state (the end of the run), which the
-    /// recording's grid may not hold; the last interval is then shorter.
-    pub fn end_recording(&mut self) {
+    /// recording's grid may not hold; the last interval is then shorter. A non-finite
+    /// sample is not kept and gives [`BeltError::Diverged`].
+    pub fn end_recording(&mut self) -> BeltResult<()> {
         self.evaluate(Effects::ALL);
         if self.recording.len() >= self.max_samples {
             self.recording.decimate();
             self.record_every = self.record_every.saturating_mul(2);
         }
         self.recording.reserve_one(self.max_samples);
-        self.sample();
+        self.sample_finite()
     }
 
     /// Close a recording cut short (e.g. by Ctrl-C): sample the final state only if it is
-    /// on the recording grid, so every sample stays on it.
-    pub fn end_recording_on_grid(&mut self) {
+    /// on the recording grid, so every sample stays on it. A non-finite sample is not
+    /// kept and gives [`BeltError::Diverged`].
+    pub fn end_recording_on_grid(&mut self) -> BeltResult<()> {
         if self.record_counter.is_multiple_of(self.record_every) {
             self.evaluate(Effects::ALL);
-            self.record_if_due();
+            self.record_if_due()?;
         }
+        Ok(())
     }
 
     /// Run for `duration` seconds, recording about every `interval` seconds (rounded to
@@ -322,8 +339,77 @@ impl Simulation {
             .clamp(1.0, u64::MAX as f64) as u64;
         self.begin_recording(channels, every, usize::MAX);
         self.advance_to(self.state.time + duration, u64::MAX)?;
-        self.end_recording();
+        self.end_recording()?;
         Ok(&self.recording)
+    }
+
+    /// The divergence error for a sample whose recorded `quantity` of `part` is not
+    /// finite: the first non-finite state value if there is one, else the first non-finite
+    /// node force (a finite state with forces that overflow), else the recorded value.
+    fn non_finite_sample(&self, quantity: String, part: crate::record::Part) -> BeltError {
+        use crate::record::Part;
+        use crate::state::Rigid;
+        let state_error = self.locate_non_finite();
+        if let BeltError::Diverged { ref quantity, .. } = state_error {
+            if quantity != "energy" {
+                return state_error;
+            }
+        }
+        let (quantity, location) = match self
+            .scratch
+            .force
+            .iter()
+            .enumerate()
+            .find(|(_, f)| !(f.x.is_finite() && f.y.is_finite()))
+        {
+            Some((i, f)) => (
+                format!("force {}", if f.x.is_finite() { "y" } else { "x" }),
+                format!("node {i}"),
+            ),
+            None => {
+                let (m, s, sc) = (&self.model, &self.state, &self.scratch);
+                let argmax = |key: &dyn Fn(usize) -> f64| {
+                    (0..m.nodes).max_by(|&a, &b| key(a).total_cmp(&key(b)))
+                };
+                // An energy overflows where its density is largest: name that node.
+                let half = 0.5 * m.dt;
+                let spinning = m.dofs.rigid.iter().find_map(|&d| {
+                    let mass = self.inertia.rigid(m, d);
+                    let w = s.rigid_speed(d) + half * sc.rigid_force(m, d) / mass;
+                    if (0.5 * mass * w * w).is_finite() {
+                        return None;
+                    }
+                    Some(match d {
+                        Rigid::Takeup(j) | Rigid::Pulley(j) => Part::Pulley(j),
+                        Rigid::Idler(k) => Part::Idler(k),
+                    })
+                });
+                let part = match quantity.as_str() {
+                    "kinetic energy" if spinning.is_some() => spinning.unwrap_or(part),
+                    "kinetic energy" => argmax(&|i| s.velocity[i].norm()).map_or(part, Part::Node),
+                    "gravity energy" => argmax(&|i| s.position[i].y.abs()).map_or(part, Part::Node),
+                    "strain energy" => {
+                        argmax(&|i| (s.position[(i + 1) % m.nodes] - s.position[i]).norm())
+                            .map_or(part, Part::Element)
+                    }
+                    _ => part,
+                };
+                let location = match part {
+                    Part::Node(i) => format!("node {i}"),
+                    Part::Element(i) => format!("element {i}"),
+                    Part::Pulley(j) => format!("pulley {}", m.pulleys[j].name),
+                    Part::Idler(k) => format!("idler {k}"),
+                    Part::Model => "the model".to_string(),
+                };
+                (quantity, location)
+            }
+        };
+        BeltError::Diverged {
+            time: self.state.time,
+            step: self.state.step,
+            quantity,
+            location,
+        }
     }
 
     /// Energies of the current state, J (evaluates the forces once).

@@ -73,7 +73,7 @@ fn resumed_run_continues_bit_for_bit() {
             usize::MAX,
         );
         sim.advance(700).unwrap();
-        sim.end_recording();
+        sim.end_recording().unwrap();
     }
     // The run must have exercised the state that a checkpoint has to carry.
     let r = &a.recording;
@@ -240,7 +240,7 @@ fn fused_stepping_matches_stage_by_stage_bit_for_bit() {
             usize::MAX,
         );
         sim.advance(350).unwrap();
-        sim.end_recording();
+        sim.end_recording().unwrap();
     }
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(

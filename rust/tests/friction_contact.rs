@@ -851,6 +851,7 @@ fn idler_stick_force_brings_contact_point_to_roll_speed() {
             normal: unit(rng.uniform(0.0, std::f64::consts::TAU)),
             normal_force: 500.0,
             penetration: 1e-3,
+            ..Default::default()
         };
         let idler = FrictionIdler {
             radius: rng.uniform(0.05, 0.3),

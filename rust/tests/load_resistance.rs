@@ -112,6 +112,7 @@ fn contact() -> IdlerContact {
         normal: V2::new(0.0, 1.0),
         normal_force: 1000.0,
         penetration: 1e-5,
+        ..Default::default()
     }
 }
 

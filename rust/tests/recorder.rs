@@ -17,14 +17,14 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
     let mut full = Simulation::new(&scene).unwrap();
     full.begin_recording(ALL, 1, usize::MAX);
     full.advance(1000).unwrap();
-    full.end_recording();
+    full.end_recording().unwrap();
     assert_eq!(full.recording.len(), 1001);
 
     let max = 10;
     let mut bounded = Simulation::new(&scene).unwrap();
     bounded.begin_recording(ALL, 1, max);
     bounded.advance(1000).unwrap();
-    bounded.end_recording();
+    bounded.end_recording().unwrap();
     let r = &bounded.recording;
     assert!(r.len() <= max && r.len() >= max / 2, "{} samples", r.len());
     // 1000 steps into 10 samples: the interval doubled to 128 steps (1000/128 → 8 intervals).

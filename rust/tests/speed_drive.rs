@@ -687,7 +687,7 @@ fn checkpoint_resumes_a_speed_drive_bit_for_bit() {
     for sim in [&mut a, &mut b] {
         sim.begin_recording(Channels::default(), 5, usize::MAX);
         sim.advance((0.6 / dt) as u64).unwrap();
-        sim.end_recording();
+        sim.end_recording().unwrap();
     }
     assert!(
         a.recording.drive_torque.iter().any(|&t| t == -300.0),

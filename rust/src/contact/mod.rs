@@ -194,8 +194,10 @@ pub struct IdlerContact {
     pub normal: V2,
     /// Normal force on the belt, N.
     pub normal_force: f64,
-    /// Penetration, m.
+    /// Penetration of the deepest part, m.
     pub penetration: f64,
+    /// Penalty energy ½·k·d² summed over every part pressing on the roll, J.
+    pub energy: f64,
 }
 
 /// Inputs describing one idler.
@@ -299,6 +301,7 @@ pub fn idler_contact(
         }
         out.active = true;
         out.normal_force += fn_;
+        out.energy += 0.5 * body.stiffness * depth * depth;
     }
     out
 }

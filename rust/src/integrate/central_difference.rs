@@ -286,14 +286,17 @@ impl Simulation {
         &mut self,
         steps: u64,
         tensions: bool,
-        mut between: impl FnMut(&mut Self),
+        mut between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<()> {
         let fuse = self.profile.is_none() && self.model.loads.is_empty();
         let dt = self.model.dt;
         let mut axial_done = false;
         for k in 0..steps {
+            // Between whole steps only: an interrupted call leaves a consistent state (the
+            // fused axial pass is redone by the next call's complete evaluation).
+            crate::interrupt::check(self.model.nodes as u64)?;
             self.evaluate_after(Effects::ALL, dt, axial_done);
-            between(self);
+            between(self)?;
             axial_done = fuse && k + 1 < steps;
             self.integrate_then(dt, axial_done.then_some(tensions))?;
         }
@@ -316,7 +319,7 @@ impl Simulation {
         &mut self,
         end: f64,
         max_steps: u64,
-        mut between: impl FnMut(&mut Self),
+        mut between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<bool> {
         let dt = self.model.dt;
         // The time is a running sum of steps: after n steps it carries up to n rounding
@@ -338,8 +341,9 @@ impl Simulation {
         if rest > rounding {
             // Velocities v(t − Δt/2) → v(t + r/2): a kick of (Δt + r)/2, a drift of r.
             let kick = 0.5 * (dt + rest);
+            crate::interrupt::check(self.model.nodes as u64)?;
             self.evaluate_full(Effects::ALL, kick, rest, 1.0, false);
-            between(self);
+            between(self)?;
             self.integrate_short(kick, rest)?;
             self.state.time = end;
             self.recentre(rest);

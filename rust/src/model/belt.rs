@@ -91,7 +91,7 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
             ),
         ));
     }
-    let (initial_positions, _chord) = path.equal_chord_nodes(n);
+    let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
 
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;

@@ -19,7 +19,7 @@ pub use pulleys::{PulleyModel, TakeupModel};
 pub use stable_step::StableStep;
 pub use stages::Stage;
 
-use crate::error::BeltResult;
+use crate::error::{BeltError, BeltResult};
 use crate::forces;
 use crate::geometry::BeltPath;
 use crate::integrate::Integrator;
@@ -27,6 +27,12 @@ use crate::loads::LoadModel;
 use crate::scene::Scene;
 use crate::state::DofLayout;
 use nalgebra::Vector2;
+
+/// Smallest time step a scene may compile to, s. A stable step below it means that a
+/// stiffness, damping or mass is out of proportion (usually wrong units): one simulated
+/// second would take more than 10⁹ steps, and a step that underflows to zero would never
+/// advance time. Such scenes are refused at compile time (docs/runtime.md).
+pub const MIN_TIME_STEP: f64 = 1e-9;
 
 /// The read-only compiled model.
 #[derive(Debug, Clone)]
@@ -168,6 +174,20 @@ impl Model {
             relaxation_move_limit,
         };
         let stable = model.stable_step(1.0)?;
+        if !(stable.dt >= MIN_TIME_STEP && stable.dt.is_finite()) {
+            let (field, value) = match scene.solver.time_step {
+                Some(dt) => ("solver.time_step", dt),
+                None => ("solver.time_step_fraction", scene.solver.time_step_fraction),
+            };
+            return Err(BeltError::invalid(
+                field,
+                value,
+                format!(
+                    "gives a time step of {:e} s (stability limit {:e} s, set by {}), below the floor of {MIN_TIME_STEP:e} s or not finite: one second would take over 10^9 steps; a stiffness, damping or mass is out of proportion (check the units)",
+                    stable.dt, stable.dt_limit, stable.dt_cause
+                ),
+            ));
+        }
         model.dt = stable.dt;
         model.dt_limit = stable.dt_limit;
         model.dt_cause = stable.dt_cause;

@@ -2,8 +2,9 @@
 //! call the core, and convert results and errors back. No panic crosses into Python.
 
 mod scene;
+mod shared;
 
-use crate::error::BeltError;
+use crate::error::{BeltError, BeltResult};
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
 use crate::simulation::Simulation;
 use crate::{Relaxation, StabiliseOptions};
@@ -12,8 +13,11 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use shared::{Guard, Shared};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 
 create_exception!(
     _beltrs,
@@ -55,23 +59,104 @@ fn to_py(err: BeltError) -> PyErr {
         BeltError::Diverged { .. } => DivergenceError::new_err(msg),
         BeltError::Checkpoint { .. } => CheckpointError::new_err(msg),
         BeltError::Usage(_) => BeltrsError::new_err(msg),
+        BeltError::Interrupted => {
+            pyo3::exceptions::PyKeyboardInterrupt::new_err("interrupted (beltrs)")
+        }
     }
+}
+
+/// What an interruptible call ended with: the core's result, and the exception a Python
+/// signal handler raised while it ran (usually `KeyboardInterrupt`), if any.
+struct Interruptible<T> {
+    result: BeltResult<T>,
+    signal: Option<PyErr>,
+}
+
+impl<T> Interruptible<T> {
+    /// The result, with a caught signal taking precedence (re-raised as Python raised it).
+    fn into_py(self) -> PyResult<T> {
+        match self.signal {
+            Some(e) => Err(e),
+            None => self.result.map_err(to_py),
+        }
+    }
+}
+
+/// Run `f` without the GIL, with an interrupt hook that takes the GIL about every
+/// [`crate::interrupt::POLL_INTERVAL`] and runs Python's signal handlers: Ctrl-C (or any
+/// handler that raises) stops `f` at the next whole step or element.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce() -> BeltResult<T> + Send,
+) -> Interruptible<T> {
+    interruptible_with_progress(py, None, f)
+}
+
+/// [`interruptible`], also calling `progress(done)` at each poll with what the core last
+/// reported ([`crate::interrupt::report`]); an exception from it is ignored, except a
+/// `KeyboardInterrupt`, which stops the call like one from the signal check.
+fn interruptible_with_progress<T: Send>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    f: impl FnOnce() -> BeltResult<T> + Send,
+) -> Interruptible<T> {
+    let caught: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
+    let hook_caught = caught.clone();
+    let hook = move || {
+        Python::attach(|py| {
+            // A Ctrl-C may land in the callback's Python code: it must not be lost.
+            let shown = match &progress {
+                Some(callback) => callback.call1(py, (crate::interrupt::reported(),)).err(),
+                None => None,
+            };
+            if let Some(e) = shown {
+                if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
+                    return true;
+                }
+            }
+            match py.check_signals() {
+                Ok(()) => false,
+                Err(e) => {
+                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
+                    true
+                }
+            }
+        })
+    };
+    let result = py.detach(move || {
+        match catch_unwind(AssertUnwindSafe(|| crate::interrupt::with_hook(hook, f))) {
+            Ok(r) => Ok(r),
+            Err(payload) => Err(panic_message(payload)),
+        }
+    });
+    let signal = caught.lock().unwrap_or_else(PoisonError::into_inner).take();
+    match result {
+        Ok(result) => Interruptible { result, signal },
+        Err(what) => Interruptible {
+            result: Err(BeltError::Usage(what.clone())),
+            signal: Some(internal_error(&what)),
+        },
+    }
+}
+
+fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
+    payload
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_else(|| "unknown panic".into())
+}
+
+fn internal_error(what: &str) -> PyErr {
+    BeltrsError::new_err(format!("internal error in beltrs (please report): {what}"))
 }
 
 /// Run `f`, turning a Rust panic into a `BeltrsError` instead of crossing into Python.
 fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(r) => r,
-        Err(payload) => {
-            let what = payload
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_else(|| "unknown panic".into());
-            Err(BeltrsError::new_err(format!(
-                "internal error in beltrs (please report): {what}"
-            )))
-        }
+        Err(payload) => Err(internal_error(&panic_message(payload))),
     }
 }
 
@@ -81,111 +166,132 @@ fn array<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<
 }
 
 /// The engine: a compiled model, its state and the current recording.
+///
+/// Thread safety: the simulation sits behind a fair lock ([`shared`]). A call from a
+/// second thread waits (without the GIL) for its turn, so concurrent calls run one after
+/// the other and none fails or loses anything; `Simulation.run` in Python calls the core in
+/// short chunks, so e.g. a checkpoint saved from another thread lands between two chunks.
 #[pyclass(name = "Simulation", module = "beltrs._beltrs")]
 struct PySimulation {
-    inner: Simulation,
-    interrupted: bool,
+    inner: Shared<Simulation>,
+    interrupted: AtomicBool,
+}
+
+impl PySimulation {
+    fn wrap(inner: Simulation) -> Self {
+        PySimulation {
+            inner: Shared::new(inner),
+            interrupted: AtomicBool::new(false),
+        }
+    }
+
+    /// The simulation, after any call already running or waiting on it from another
+    /// thread.
+    fn lock(&self, py: Python<'_>) -> Guard<'_, Simulation> {
+        self.inner.lock(py)
+    }
 }
 
 #[pymethods]
 impl PySimulation {
-    /// Compile a scene given in dict form (see `beltrs.Scene.to_dict`).
+    /// Compile a scene given in dict form (see `beltrs.Scene.to_dict`). Ctrl-C interrupts
+    /// a long compile (KeyboardInterrupt).
     #[new]
-    fn new(scene: &Bound<'_, PyAny>) -> PyResult<Self> {
-        guarded(|| {
-            let scene = scene::scene_from_py(scene).map_err(to_py)?;
-            let inner = Simulation::new(&scene).map_err(to_py)?;
-            Ok(PySimulation {
-                inner,
-                interrupted: false,
-            })
-        })
+    fn new(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let scene = guarded(|| scene::scene_from_py(scene).map_err(to_py))?;
+        let inner = interruptible(py, || Simulation::new(&scene)).into_py()?;
+        Ok(Self::wrap(inner))
     }
 
     /// Replace the scene parameters and keep the state.
-    fn set_scene(&mut self, scene: &Bound<'_, PyAny>) -> PyResult<()> {
-        guarded(|| {
-            let scene = scene::scene_from_py(scene).map_err(to_py)?;
-            self.inner.set_scene(&scene).map_err(to_py)
-        })
+    fn set_scene(&self, py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<()> {
+        let scene = guarded(|| scene::scene_from_py(scene).map_err(to_py))?;
+        let mut sim = self.lock(py);
+        let sim = &mut *sim;
+        interruptible(py, || sim.set_scene(&scene)).into_py()
     }
 
     /// Time step in use, s.
     #[getter]
-    fn dt(&self) -> f64 {
-        self.inner.model.dt
+    fn dt(&self, py: Python<'_>) -> f64 {
+        self.lock(py).model.dt
     }
 
     /// Estimated stability limit of the time step, s.
     #[getter]
-    fn dt_limit(&self) -> f64 {
-        self.inner.model.dt_limit
+    fn dt_limit(&self, py: Python<'_>) -> f64 {
+        self.lock(py).model.dt_limit
     }
 
     /// The stiffest term, which sets the stability limit.
     #[getter]
-    fn dt_cause(&self) -> String {
-        self.inner.model.dt_cause.clone()
+    fn dt_cause(&self, py: Python<'_>) -> String {
+        self.lock(py).model.dt_cause.clone()
     }
 
     /// Names of the compiled stages, in the order they run.
     #[getter]
-    fn stages(&self) -> Vec<&'static str> {
-        self.inner.model.stages.iter().map(|s| s.name()).collect()
+    fn stages(&self, py: Python<'_>) -> Vec<&'static str> {
+        self.lock(py)
+            .model
+            .stages
+            .iter()
+            .map(|s| s.name())
+            .collect()
     }
 
     /// Number of belt nodes (= elements).
     #[getter]
-    fn nodes(&self) -> usize {
-        self.inner.model.nodes
+    fn nodes(&self, py: Python<'_>) -> usize {
+        self.lock(py).model.nodes
     }
 
     /// Simulated time, s.
     #[getter]
-    fn time(&self) -> f64 {
-        self.inner.state.time
+    fn time(&self, py: Python<'_>) -> f64 {
+        self.lock(py).state.time
     }
 
     /// Steps taken.
     #[getter]
-    fn step_count(&self) -> u64 {
-        self.inner.state.step
+    fn step_count(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.step
     }
 
     /// Length of the initial belt path, m.
     #[getter]
-    fn path_length(&self) -> f64 {
-        self.inner.model.path.length
+    fn path_length(&self, py: Python<'_>) -> f64 {
+        self.lock(py).model.path.length
     }
 
     /// Wrap angle on each pulley on the initial path, rad.
     #[getter]
-    fn wrap_angles(&self) -> Vec<f64> {
-        self.inner.model.path.wrap_angles.clone()
+    fn wrap_angles(&self, py: Python<'_>) -> Vec<f64> {
+        self.lock(py).model.path.wrap_angles.clone()
     }
 
     /// Element rest lengths, m.
     #[getter]
     fn rest_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.inner.model.rest_length)
+        PyArray1::from_slice(py, &self.lock(py).model.rest_length)
     }
 
     /// Node masses, kg.
     #[getter]
     fn node_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.inner.model.mass)
+        PyArray1::from_slice(py, &self.lock(py).model.mass)
     }
 
     /// Node masses now (belt and material), kg.
     fn node_masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.inner.state.node_mass)
+        PyArray1::from_slice(py, &self.lock(py).state.node_mass)
     }
 
     /// Each load's zone now: rows of (start, end, length) in metres of unstretched belt
     /// from node 0 (start and end: the material coordinates of the belt points nearest the
     /// loading and discharge points; length: of the zone between them), shape (loads, 3).
     fn load_zones<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let sim = &self.inner;
+        let sim = self.lock(py);
         let belt = sim.model.load_belt();
         let lengths = crate::loads::zone_lengths(&sim.model.loads, &sim.state.load_edges, belt);
         let rows: Vec<f64> = sim
@@ -201,24 +307,28 @@ impl PySimulation {
     /// Whether the last run stopped on Ctrl-C.
     #[getter]
     fn interrupted(&self) -> bool {
-        self.interrupted
+        self.interrupted.load(Ordering::Relaxed)
     }
 
-    /// Relax to static equilibrium. Returns a dict with steps, residual, converged, resets.
-    #[pyo3(signature = (method="fire", friction=false, tolerance=1e-7, max_steps=5_000_000))]
+    /// Relax to static equilibrium. Returns a dict with steps, residual, converged, resets
+    /// and interrupted (Ctrl-C stops the relaxation at rest and returns its report).
+    /// `progress`, if given, is called with the steps of the current relaxation stage
+    /// about every 20 ms.
+    #[pyo3(signature = (method="fire", friction=false, tolerance=1e-7, max_steps=5_000_000, progress=None))]
     fn stabilise<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         method: &str,
         friction: bool,
         tolerance: f64,
         max_steps: u64,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let method = match method {
             "fire" => Relaxation::Fire,
             "kinetic" => Relaxation::KineticEnergy,
             other => {
-                return Err(BeltrsError::new_err(format!(
+                return Err(SceneError::new_err(format!(
                     "method = {other:?}: unknown relaxation (known: \"fire\", \"kinetic\")"
                 )))
             }
@@ -229,13 +339,34 @@ impl PySimulation {
             tolerance,
             max_steps,
         };
-        let sim = &mut self.inner;
-        let report = guarded(|| py.detach(|| sim.stabilise(&options)).map_err(to_py))?;
+        let mut sim = self.lock(py);
+        let sim = &mut *sim;
+        let done = interruptible_with_progress(py, progress, || sim.stabilise(&options));
+        // Ctrl-C ends the relaxation with its report marked interrupted (at rest, on the
+        // scene's own model); another exception from a signal handler is raised.
+        let report = match (done.result, done.signal) {
+            (Ok(r), None) => r,
+            (Err(e), None) => return Err(to_py(e)),
+            (result, Some(signal)) => {
+                if !signal.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    return Err(signal);
+                }
+                match result {
+                    Ok(mut r) => {
+                        r.interrupted = true;
+                        r
+                    }
+                    Err(BeltError::Interrupted) => interrupted_report(),
+                    Err(e) => return Err(to_py(e)),
+                }
+            }
+        };
         let d = PyDict::new(py);
         d.set_item("steps", report.steps)?;
         d.set_item("residual", report.residual)?;
         d.set_item("converged", report.converged)?;
         d.set_item("resets", report.resets)?;
+        d.set_item("interrupted", report.interrupted)?;
         Ok(d)
     }
 
@@ -243,8 +374,10 @@ impl PySimulation {
     /// `max_samples` (≥ 2) instants: when full, every other instant is dropped and the
     /// interval doubles.
     #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX, energy=false))]
+    #[allow(clippy::too_many_arguments)]
     fn begin_recording(
-        &mut self,
+        &self,
+        py: Python<'_>,
         every: u64,
         tension: bool,
         node_position: bool,
@@ -266,60 +399,66 @@ impl PySimulation {
             node_velocity,
             energy,
         };
-        self.interrupted = false;
-        self.inner.begin_recording(channels, every, max_samples);
+        self.interrupted.store(false, Ordering::Relaxed);
+        self.lock(py).begin_recording(channels, every, max_samples);
         Ok(())
     }
 
-    /// Advance `steps` steps into the current recording (GIL released; no signal checks:
-    /// callers keep chunks short). A blow-up raises DivergenceError and keeps the recording.
-    fn advance(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
-        let sim = &mut self.inner;
-        guarded(|| py.detach(|| sim.advance(steps)).map_err(to_py))
+    /// Advance `steps` steps into the current recording (GIL released). Ctrl-C stops at a
+    /// whole step and raises KeyboardInterrupt (the state and recording stay consistent).
+    /// A blow-up raises DivergenceError and keeps the recording.
+    fn advance(&self, py: Python<'_>, steps: u64) -> PyResult<()> {
+        let mut sim = self.lock(py);
+        let sim = &mut *sim;
+        interruptible(py, || sim.advance(steps)).into_py()
     }
 
     /// Advance towards simulated time `end` (s) into the current recording, at most
-    /// `max_steps` steps (GIL released; callers keep chunks short and check for Ctrl-C in
-    /// between). Returns True once the state is at `end` exactly (whole steps, then one
-    /// shortened step). A blow-up raises DivergenceError and keeps the recording.
-    fn advance_to(&mut self, py: Python<'_>, end: f64, max_steps: u64) -> PyResult<bool> {
-        let sim = &mut self.inner;
-        guarded(|| py.detach(|| sim.advance_to(end, max_steps)).map_err(to_py))
+    /// `max_steps` steps (GIL released; callers keep chunks short so that other threads get
+    /// their turn). Returns True once the state is at `end` exactly (whole steps, then one
+    /// shortened step). Ctrl-C stops at a whole step and raises KeyboardInterrupt (the state
+    /// and recording stay consistent). A blow-up raises DivergenceError and keeps the
+    /// recording.
+    fn advance_to(&self, py: Python<'_>, end: f64, max_steps: u64) -> PyResult<bool> {
+        let mut sim = self.lock(py);
+        let sim = &mut *sim;
+        interruptible(py, || sim.advance_to(end, max_steps)).into_py()
     }
 
     /// Close the current recording: sample the final state (the end of the run), or, when
     /// `interrupted`, only if it is on the recording grid. `interrupted` is stored for the
     /// `interrupted` getter.
     #[pyo3(signature = (interrupted=false))]
-    fn end_recording(&mut self, interrupted: bool) -> PyResult<()> {
-        self.interrupted = interrupted;
-        let sim = &mut self.inner;
+    fn end_recording(&self, py: Python<'_>, interrupted: bool) -> PyResult<()> {
+        self.interrupted.store(interrupted, Ordering::Relaxed);
+        let mut sim = self.lock(py);
         guarded(|| {
             if interrupted {
-                sim.end_recording_on_grid();
+                sim.end_recording_on_grid().map_err(to_py)
             } else {
-                sim.end_recording();
+                sim.end_recording().map_err(to_py)
             }
-            Ok(())
         })
     }
 
     /// Steps between recorded instants now (doubled at each decimation).
     #[getter]
-    fn record_every(&self) -> u64 {
-        self.inner.record_every()
+    fn record_every(&self, py: Python<'_>) -> u64 {
+        self.lock(py).record_every()
     }
 
     /// Bytes one instant would take with these channels.
     #[pyo3(signature = (tension, node_position, node_velocity, energy=false))]
     fn sample_bytes(
         &self,
+        py: Python<'_>,
         tension: bool,
         node_position: bool,
         node_velocity: bool,
         energy: bool,
     ) -> usize {
-        let m = &self.inner.model;
+        let sim = self.lock(py);
+        let m = &sim.model;
         let r = Recording::new(
             Channels {
                 tension,
@@ -335,13 +474,14 @@ impl PySimulation {
     }
 
     /// Bytes allocated by the recording buffers (capacity).
-    fn recording_allocated_bytes(&mut self) -> usize {
-        self.inner.recording.allocated_bytes()
+    fn recording_allocated_bytes(&self, py: Python<'_>) -> usize {
+        self.lock(py).recording.allocated_bytes()
     }
 
     /// Save the scene and the full state to `path` atomically (see `beltrs.checkpoint`).
     fn save_checkpoint(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let sim = &self.inner;
+        let sim = self.lock(py);
+        let sim = &*sim;
         guarded(|| {
             py.detach(|| crate::checkpoint::save(sim, &path))
                 .map_err(to_py)
@@ -349,7 +489,7 @@ impl PySimulation {
     }
 
     /// A simulation read back from the checkpoint at `path`. With `scene` (dict form) the
-    /// checkpoint must hold exactly that scene.
+    /// checkpoint must hold exactly that scene. Ctrl-C interrupts it (KeyboardInterrupt).
     #[staticmethod]
     #[pyo3(signature = (path, scene=None))]
     fn load_checkpoint(
@@ -357,43 +497,48 @@ impl PySimulation {
         path: PathBuf,
         scene: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        guarded(|| {
-            let expected = match scene {
-                Some(d) => Some(scene::scene_from_py(d).map_err(to_py)?),
-                None => None,
-            };
-            let inner = py
-                .detach(|| match &expected {
-                    Some(s) => crate::checkpoint::load_for(&path, s),
-                    None => crate::checkpoint::load(&path),
-                })
-                .map_err(to_py)?;
-            Ok(PySimulation {
-                inner,
-                interrupted: false,
-            })
+        let expected = match scene {
+            Some(d) => Some(guarded(|| scene::scene_from_py(d).map_err(to_py))?),
+            None => None,
+        };
+        let inner = interruptible(py, || match &expected {
+            Some(s) => crate::checkpoint::load_for(&path, s),
+            None => crate::checkpoint::load(&path),
         })
+        .into_py()?;
+        Ok(Self::wrap(inner))
     }
 
     /// The scene of the compiled model, in dict form (the keys of `Scene.to_dict()`).
     fn scene_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        scene::to_py(py, &self.inner.model.scene)
+        scene::to_py(py, &self.lock(py).model.scene)
     }
 
-    /// Advance `steps` steps without recording.
-    fn step(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
-        let sim = &mut self.inner;
-        guarded(|| py.detach(|| sim.step(steps)).map_err(to_py))
+    /// Advance `steps` steps without recording. Ctrl-C stops at a whole step and raises
+    /// KeyboardInterrupt (the state stays consistent).
+    fn step(&self, py: Python<'_>, steps: u64) -> PyResult<()> {
+        let mut sim = self.lock(py);
+        let sim = &mut *sim;
+        interruptible(py, || sim.step(steps)).into_py()
     }
 
-    /// The current recording as a dict of NumPy arrays (copies).
+    /// The current recording as a dict of NumPy arrays (copies; the recording stays).
     fn recording<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        recording_dict(py, &self.inner.recording)
+        let rec = self.lock(py).recording.clone();
+        recording_dict(py, rec)
+    }
+
+    /// The current recording as a dict of NumPy arrays that take over its buffers (no
+    /// copy); the recording is left empty, so its memory is held once, by the arrays.
+    fn take_recording<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let rec = self.lock(py).recording.take();
+        recording_dict(py, rec)
     }
 
     /// The current state as a dict of NumPy arrays (copies).
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = &self.inner.state;
+        let sim = self.lock(py);
+        let s = &sim.state;
         let d = PyDict::new(py);
         let n = s.position.len();
         let flat =
@@ -425,23 +570,23 @@ impl PySimulation {
     }
 
     /// Element tensions at the current state, N.
-    fn tensions<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let sim = &mut self.inner;
+    fn tensions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let mut sim = self.lock(py);
         let t = guarded(|| Ok(sim.tensions().to_vec()))?;
         Ok(PyArray1::from_vec(py, t))
     }
 
     /// Net force on each node at the current state, N, shape (n_nodes, 2).
-    fn forces<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let sim = &mut self.inner;
+    fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let mut sim = self.lock(py);
         let f: Vec<f64> = guarded(|| Ok(sim.forces().iter().flat_map(|p| [p.x, p.y]).collect()))?;
         let n = f.len() / 2;
         array(py, &f, &[n, 2])
     }
 
     /// Energies of the current state, J.
-    fn energies<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let sim = &mut self.inner;
+    fn energies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let mut sim = self.lock(py);
         let e = guarded(|| Ok(sim.current_energies()))?;
         let d = PyDict::new(py);
         let values = [
@@ -460,15 +605,16 @@ impl PySimulation {
     }
 
     /// Turn per-stage timing on (zeroed) or off.
-    fn set_profiling(&mut self, on: bool) {
-        self.inner.set_profiling(on);
+    fn set_profiling(&self, py: Python<'_>, on: bool) {
+        self.lock(py).set_profiling(on);
     }
 
     /// Seconds spent in each stage since profiling was turned on (empty when off).
     fn profile<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let sim = self.lock(py);
         let d = PyDict::new(py);
-        if let Some(p) = &self.inner.profile {
-            for (s, t) in self.inner.model.stages.iter().zip(p) {
+        if let Some(p) = &sim.profile {
+            for (s, t) in sim.model.stages.iter().zip(p) {
                 d.set_item(s.name(), *t)?;
             }
         }
@@ -476,38 +622,75 @@ impl PySimulation {
     }
 }
 
-fn recording_dict<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, PyDict>> {
+/// The report of a relaxation that a signal stopped inside a recompile (of the contact
+/// continuation): unconverged, residual unknown.
+fn interrupted_report() -> crate::StabiliseReport {
+    crate::StabiliseReport {
+        steps: 0,
+        residual: f64::NAN,
+        converged: false,
+        resets: 0,
+        interrupted: true,
+    }
+}
+
+/// A recording as a dict of NumPy arrays that own its buffers (no copy).
+fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let t = r.len();
     let (n, p, q) = (r.nodes, r.pulleys, r.idlers);
-    d.set_item("time", PyArray1::from_slice(py, &r.time))?;
-    if r.channels.tension {
-        d.set_item("tension", array(py, &r.tension, &[t, n])?)?;
+    let own = |v: Vec<f64>, shape: &[usize]| -> PyResult<Bound<'_, PyAny>> {
+        Ok(PyArray1::from_vec(py, v)
+            .reshape(shape.to_vec())?
+            .into_any())
+    };
+    let channels = r.channels;
+    let Recording {
+        time,
+        tension,
+        node_position,
+        node_velocity,
+        pulley_position,
+        takeup_travel,
+        pulley_speed,
+        friction_torque,
+        drive_torque,
+        brake_torque,
+        pulley_force,
+        normal_force,
+        friction_force,
+        contact_nodes,
+        slipping_nodes,
+        idler_force,
+        idler_speed,
+        energy,
+        ..
+    } = r;
+    d.set_item("time", PyArray1::from_vec(py, time))?;
+    if channels.tension {
+        d.set_item("tension", own(tension, &[t, n])?)?;
     }
-    if r.channels.node_position {
-        d.set_item("node_position", array(py, &r.node_position, &[t, n, 2])?)?;
+    if channels.node_position {
+        d.set_item("node_position", own(node_position, &[t, n, 2])?)?;
     }
-    if r.channels.node_velocity {
-        d.set_item("node_velocity", array(py, &r.node_velocity, &[t, n, 2])?)?;
+    if channels.node_velocity {
+        d.set_item("node_velocity", own(node_velocity, &[t, n, 2])?)?;
     }
-    d.set_item(
-        "pulley_position",
-        array(py, &r.pulley_position, &[t, p, 2])?,
-    )?;
-    d.set_item("takeup_travel", array(py, &r.takeup_travel, &[t, p])?)?;
-    d.set_item("pulley_speed", array(py, &r.pulley_speed, &[t, p])?)?;
-    d.set_item("friction_torque", array(py, &r.friction_torque, &[t, p])?)?;
-    d.set_item("drive_torque", array(py, &r.drive_torque, &[t, p])?)?;
-    d.set_item("brake_torque", array(py, &r.brake_torque, &[t, p])?)?;
-    d.set_item("pulley_force", array(py, &r.pulley_force, &[t, p, 2])?)?;
-    d.set_item("normal_force", array(py, &r.normal_force, &[t, p])?)?;
-    d.set_item("friction_force", array(py, &r.friction_force, &[t, p])?)?;
-    d.set_item("contact_nodes", array(py, &r.contact_nodes, &[t, p])?)?;
-    d.set_item("slipping_nodes", array(py, &r.slipping_nodes, &[t, p])?)?;
-    d.set_item("idler_force", array(py, &r.idler_force, &[t, q])?)?;
-    d.set_item("idler_speed", array(py, &r.idler_speed, &[t, q])?)?;
-    if r.channels.energy {
-        d.set_item("energy", array(py, &r.energy, &[t, ENERGY_COLUMNS.len()])?)?;
+    d.set_item("pulley_position", own(pulley_position, &[t, p, 2])?)?;
+    d.set_item("takeup_travel", own(takeup_travel, &[t, p])?)?;
+    d.set_item("pulley_speed", own(pulley_speed, &[t, p])?)?;
+    d.set_item("friction_torque", own(friction_torque, &[t, p])?)?;
+    d.set_item("drive_torque", own(drive_torque, &[t, p])?)?;
+    d.set_item("brake_torque", own(brake_torque, &[t, p])?)?;
+    d.set_item("pulley_force", own(pulley_force, &[t, p, 2])?)?;
+    d.set_item("normal_force", own(normal_force, &[t, p])?)?;
+    d.set_item("friction_force", own(friction_force, &[t, p])?)?;
+    d.set_item("contact_nodes", own(contact_nodes, &[t, p])?)?;
+    d.set_item("slipping_nodes", own(slipping_nodes, &[t, p])?)?;
+    d.set_item("idler_force", own(idler_force, &[t, q])?)?;
+    d.set_item("idler_speed", own(idler_speed, &[t, q])?)?;
+    if channels.energy {
+        d.set_item("energy", own(energy, &[t, ENERGY_COLUMNS.len()])?)?;
     }
     d.set_item("energy_columns", ENERGY_COLUMNS.to_vec())?;
     Ok(d)

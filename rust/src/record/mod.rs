@@ -105,6 +105,21 @@ pub struct Recording {
     pub energy: Vec<f64>,
 }
 
+/// The part of the model a recorded value belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Belt node (index).
+    Node(usize),
+    /// Belt element (index).
+    Element(usize),
+    /// Pulley (index).
+    Pulley(usize),
+    /// Idler (index).
+    Idler(usize),
+    /// The model as a whole (time, energies).
+    Model,
+}
+
 /// Column names of [`Recording::energy`].
 pub const ENERGY_COLUMNS: [&str; 7] = [
     "kinetic",
@@ -230,6 +245,74 @@ impl Recording {
             }
             buf.truncate(dst);
         }
+    }
+
+    /// Where the last recorded instant first holds a non-finite value (`None` if it is
+    /// finite or nothing is recorded): the quantity and the part it belongs to.
+    pub fn last_row_non_finite(&mut self) -> Option<(String, Part)> {
+        if self.is_empty() {
+            return None;
+        }
+        let widths = self.row_widths();
+        let (buffer, offset) = self
+            .buffers_mut()
+            .into_iter()
+            .zip(widths)
+            .enumerate()
+            .find_map(|(b, (buf, w))| {
+                let row = &buf[buf.len() - w..];
+                row.iter().position(|v| !v.is_finite()).map(|o| (b, o))
+            })?;
+        let xy = if offset % 2 == 0 { "x" } else { "y" };
+        Some(match buffer {
+            0 => ("time".into(), Part::Model),
+            1 => ("tension".into(), Part::Element(offset)),
+            2 => (format!("position {xy}"), Part::Node(offset / 2)),
+            3 => (format!("velocity {xy}"), Part::Node(offset / 2)),
+            4 => (format!("position {xy}"), Part::Pulley(offset / 2)),
+            5 => ("takeup travel".into(), Part::Pulley(offset)),
+            6 => ("angular speed".into(), Part::Pulley(offset)),
+            7 => ("friction torque".into(), Part::Pulley(offset)),
+            8 => ("drive torque".into(), Part::Pulley(offset)),
+            9 => ("brake torque".into(), Part::Pulley(offset)),
+            10 => (format!("belt force {xy}"), Part::Pulley(offset / 2)),
+            11 => ("normal force".into(), Part::Pulley(offset)),
+            12 => ("friction force".into(), Part::Pulley(offset)),
+            13 => ("contact count".into(), Part::Pulley(offset)),
+            14 => ("slipping count".into(), Part::Pulley(offset)),
+            15 => ("normal force".into(), Part::Idler(offset)),
+            16 => ("angular speed".into(), Part::Idler(offset)),
+            _ => (
+                format!(
+                    "{} energy",
+                    ENERGY_COLUMNS[offset.min(ENERGY_COLUMNS.len() - 1)]
+                ),
+                Part::Model,
+            ),
+        })
+    }
+
+    /// Drop the last recorded instant.
+    pub fn pop_row(&mut self) {
+        let rows = self.len();
+        if rows == 0 {
+            return;
+        }
+        let widths = self.row_widths();
+        for (buf, w) in self.buffers_mut().into_iter().zip(widths) {
+            buf.truncate((rows - 1) * w);
+        }
+    }
+
+    /// Move the recorded buffers out (trimmed to their length), leaving an empty recording
+    /// of the same sizes: the bindings hand them to NumPy without a copy.
+    pub fn take(&mut self) -> Recording {
+        let empty = Recording::new(self.channels, self.nodes, self.pulleys, self.idlers);
+        let mut out = std::mem::replace(self, empty);
+        for buf in out.buffers_mut() {
+            buf.shrink_to_fit();
+        }
+        out
     }
 
     /// Bytes held by the buffers (their length, not their capacity).

@@ -49,11 +49,10 @@ impl Simulation {
                 e.contact += 0.5 * p.contact_stiffness * d * d;
             }
         }
-        for (k, d) in m.idlers.iter().enumerate() {
-            let c = &sc.idler_contacts[k];
-            if c.active {
-                e.contact += 0.5 * d.contact_stiffness * c.penetration * c.penetration;
-            }
+        // Every part pressing on an idler roll, as the force counts them (not only the
+        // deepest).
+        for c in &sc.idler_contacts {
+            e.contact += c.energy;
         }
         e
     }

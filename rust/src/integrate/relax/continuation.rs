@@ -29,6 +29,7 @@ impl Simulation {
             residual: f64::INFINITY,
             converged: false,
             resets: 0,
+            interrupted: false,
         };
         for &scale in scales {
             self.scratch = Scratch::new(&self.model);

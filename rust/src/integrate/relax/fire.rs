@@ -57,6 +57,7 @@ impl Simulation {
             residual,
             converged: false,
             resets,
+            interrupted: false,
         })
     }
 

@@ -34,6 +34,7 @@ impl Simulation {
             residual,
             converged: false,
             resets,
+            interrupted: false,
         })
     }
 

@@ -68,6 +68,9 @@ pub struct StabiliseReport {
     pub converged: bool,
     /// Number of times the velocities were zeroed.
     pub resets: u64,
+    /// Whether the caller's interrupt hook stopped it ([`crate::interrupt`]); the state is
+    /// the last relaxation step's, at rest.
+    pub interrupted: bool,
 }
 
 impl StabiliseReport {
@@ -78,6 +81,7 @@ impl StabiliseReport {
         self.resets += r.resets;
         self.residual = r.residual;
         self.converged = r.converged;
+        self.interrupted = r.interrupted;
     }
 }
 
@@ -213,7 +217,8 @@ impl Simulation {
     }
 
     /// Evaluate the forces of relaxation step `k` and, every 32 steps, the residual (kept
-    /// in `residual`): the converged report once it is below the tolerance.
+    /// in `residual`): the converged report once it is below the tolerance, or the
+    /// interrupted one if the caller's interrupt hook ([`crate::interrupt`]) fires.
     fn relax_evaluate(
         &mut self,
         effects: Effects,
@@ -223,6 +228,16 @@ impl Simulation {
         residual: &mut f64,
         resets: u64,
     ) -> Option<StabiliseReport> {
+        crate::interrupt::report(k);
+        if crate::interrupt::check(self.model.nodes as u64).is_err() {
+            return Some(StabiliseReport {
+                steps: k,
+                residual: *residual,
+                converged: false,
+                resets,
+                interrupted: true,
+            });
+        }
         self.evaluate_scaled(effects, step.dt, step.contact_scale, false);
         if !k.is_multiple_of(32) {
             return None;
@@ -233,6 +248,7 @@ impl Simulation {
             residual: *residual,
             converged: true,
             resets,
+            interrupted: false,
         })
     }
 
