@@ -49,7 +49,7 @@ fn absent_keys_take_the_defaults() {
 fn unknown_keys_name_the_path_and_suggest() {
     let m = error(&scene_with(vec![pulley(&[("radious", Value::Float(5.0))])]));
     assert!(
-        m.starts_with("pulleys[0].radious = 'radious': unknown key, did you mean 'radius'? (known keys here: brake, center, "),
+        m.starts_with("pulleys[0].radious = 'radious': unknown key, did you mean 'radius'? (known keys here: bearing_damping, brake, center, "),
         "{m}"
     );
     let m = error(&map(&[("solver", map(&[("xyzzy", Value::Int(1))]))]));
