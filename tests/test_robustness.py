@@ -263,12 +263,15 @@ def test_checkpoints_from_another_thread_during_a_run(tmp_path):
     t = threading.Thread(target=saver)
     t.start()
     try:
-        res = sim.run(300_000 * sim.dt, record_every=1000, progress=False)
+        res = sim.run(3_000_000 * sim.dt, record_every=10_000, progress=False)
     finally:
         stop.set()
         t.join()
     assert problems == []
-    assert len(saved) > 5 and not res.interrupted and len(res) == 301
+    # Saves landed while the run was going (not only before or after it); how many depends
+    # on the machine's speed (9-13 in a fresh CI build; 300 000 steps gave 2-3), so at least two.
+    inside = [t for t in saved if 0.0 < t < sim.time]
+    assert len(inside) >= 2 and not res.interrupted and len(res) == 301
     assert beltrs.Simulation.load_checkpoint(tmp_path / "bg.ck").time <= sim.time
 
 
