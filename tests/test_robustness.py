@@ -17,27 +17,13 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import Belt, Friction, Idler, Pulley, Scene, Solver, Takeup
+from tiny_scene import tiny_scene
+from beltrs import Friction, Idler, Scene, Solver, Takeup
 from beltrs import simulation as simulation_module
 
 # These tests run small scenes straight from the initial placement on purpose (they check
 # interrupts, locks, checkpoints and guards, not the physics of the start-up).
 pytestmark = pytest.mark.filterwarnings("ignore::beltrs.NotRelaxedWarning")
-
-
-def tiny_scene(**belt) -> Scene:
-    """Two 0.5 m pulleys 2 m apart, 16 elements, pretensioned by a 0.2 % short belt (about
-    1 µs per step)."""
-    path = 2 * 2.0 + 2 * math.pi * 0.5
-    kw = dict(axial_stiffness=1e6, mass_per_length=10.0, elements=16, length=path * 0.998, damping_ratio=0.05)
-    kw.update(belt)
-    return Scene(
-        belt=Belt(**kw),
-        pulleys=[
-            Pulley(center=(0.0, 0.0), radius=0.5, contact_stiffness=1e7, name="tail"),
-            Pulley(center=(2.0, 0.0), radius=0.5, contact_stiffness=1e7, name="head"),
-        ],
-    )
 
 
 def child(code: str, timeout: float = 60.0, **kw) -> subprocess.CompletedProcess:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import _thread
-import math
 import signal
 import subprocess
 import sys
@@ -16,23 +15,9 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import Belt, Drive, Friction, Idler, Pulley, Scene
+from tiny_scene import tiny_scene
+from beltrs import Drive, Friction, Idler, Scene
 from beltrs.scenes import hustrulid_loop
-
-
-def tiny_scene(**belt) -> Scene:
-    """Two 0.5 m pulleys 2 m apart, 16 elements, pretensioned by a 0.2 % short belt: about
-    1 µs per step, so 10^6 steps take about a second."""
-    path = 2 * 2.0 + 2 * math.pi * 0.5
-    kw = dict(axial_stiffness=1e6, mass_per_length=10.0, elements=16, length=path * 0.998, damping_ratio=0.05)
-    kw.update(belt)
-    return Scene(
-        belt=Belt(**kw),
-        pulleys=[
-            Pulley(center=(0.0, 0.0), radius=0.5, contact_stiffness=1e7, name="tail"),
-            Pulley(center=(2.0, 0.0), radius=0.5, contact_stiffness=1e7, name="head"),
-        ],
-    )
 
 
 def busy_case_h() -> Scene:

@@ -212,15 +212,7 @@ impl BeltPath {
     fn next_at_chord(&self, s0: f64, chord: f64) -> f64 {
         let p0 = self.point(s0);
         let gap = |s: f64| (self.point(s) - p0).norm() - chord;
-        // Expand until the chord is reached (arc ≥ chord always, so start at s0 + chord).
-        let (mut lo, mut glo) = (s0, -chord);
-        let mut hi = s0 + chord;
-        let mut ghi = gap(hi);
-        while ghi < 0.0 && hi < s0 + 4.0 * chord {
-            (lo, glo) = (hi, ghi);
-            hi += 0.25 * chord;
-            ghi = gap(hi);
-        }
+        let (lo, glo, hi, ghi) = chord_bracket(s0, chord, &gap);
         // Rounding makes "closer than" noisy within a few ulps of the crossing only.
         let margin = 64.0 * f64::EPSILON * (s0.abs() + chord + p0.amax());
         let crossing = (ghi >= 0.0).then(|| illinois(lo, glo, hi, ghi, 0.25 * margin, 40, gap));
@@ -232,14 +224,7 @@ impl BeltPath {
     fn next_at_chord_fast(&self, s0: f64, chord: f64) -> f64 {
         let p0 = self.point(s0);
         let gap = |s: f64| (self.point(s) - p0).norm() - chord;
-        let (mut lo, mut glo) = (s0, -chord);
-        let mut hi = s0 + chord;
-        let mut ghi = gap(hi);
-        while ghi < 0.0 && hi < s0 + 4.0 * chord {
-            (lo, glo) = (hi, ghi);
-            hi += 0.25 * chord;
-            ghi = gap(hi);
-        }
+        let (lo, glo, hi, ghi) = chord_bracket(s0, chord, &gap);
         if ghi < 0.0 {
             return hi;
         }
@@ -417,6 +402,21 @@ fn illinois(
         }
     }
     x
+}
+
+/// Bracket the crossing of `gap` (distance from the point at `s0`, minus `chord`) past `s0`:
+/// the arc is at least the chord, so start at `s0 + chord` and step by a quarter chord up to
+/// `s0 + 4·chord`. Returns `(lo, gap(lo), hi, gap(hi))`, `gap(hi) ≥ 0` unless none was found.
+fn chord_bracket(s0: f64, chord: f64, gap: &impl Fn(f64) -> f64) -> (f64, f64, f64, f64) {
+    let (mut lo, mut glo) = (s0, -chord);
+    let mut hi = s0 + chord;
+    let mut ghi = gap(hi);
+    while ghi < 0.0 && hi < s0 + 4.0 * chord {
+        (lo, glo) = (hi, ghi);
+        hi += 0.25 * chord;
+        ghi = gap(hi);
+    }
+    (lo, glo, hi, ghi)
 }
 
 #[cfg(test)]
