@@ -400,15 +400,15 @@ def test_wrong_type_from_the_builder():
             r'unknown belt formulation \(known: "node_kelvin_voigt"\)',
         ),
         (
-            ("pulleys", 0, "friction", "model"),
-            "creep",
-            r'pulleys\[0\]\.friction\.model = "creep": '
-            r'the creep friction model is not implemented yet \(available: "none", "stick_force"\)',
+            ("pulleys", 0, "friction"),
+            {"model": "stick_force", "static": 0.5, "creep_limit": 1e-4},
+            r"pulleys\[0\]\.friction\.creep_limit = 0\.0001: "
+            r'belongs to the creep friction model only \(model = "creep"; here "stick_force"\)',
         ),
         (
             ("idlers", 1, "friction", "model"),
-            "creep",
-            r'idlers\[1\]\.friction\.model = "creep": the creep friction model is not implemented yet',
+            "creepy",
+            r'idlers\[1\]\.friction\.model = "creepy": unknown friction model, did you mean "creep"\?',
         ),
         (
             ("pulleys", 1, "friction", "model"),

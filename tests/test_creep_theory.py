@@ -198,7 +198,7 @@ def test_creep_theory_limits_and_unequal_pulleys() -> None:
     # lowers the contact pressure (T - Q*v)/r instead.
     assert idle.tight_tension == pytest.approx(T0, rel=1e-12)
     assert idle.slack_tension == pytest.approx(T0, rel=1e-12)
-    with pytest.raises(ValueError, match="capstan limit"):
+    with pytest.raises(beltrs.SceneError, match="capstan limit"):
         two_pulley_creep(drive_radius=R, driven_radius=R, load_torque=80.0, **kw)
-    with pytest.raises(ValueError, match="mu = -0.5: must be finite and > 0"):
+    with pytest.raises(beltrs.SceneError, match="mu = -0.5: must be finite and > 0"):
         two_pulley_creep(drive_radius=R, driven_radius=R, load_torque=1.0, **{**kw, "mu": -0.5})

@@ -409,6 +409,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
     tables = {
         "Root": ("scene", {"gravity"}),
         "`[belt]`": ("belt", None),
+        "`start` and `end`": ("belt_end", None),
         "`[[pulleys]]`": ("pulley", None),
         "`friction`": ("friction", None),
         "`takeup`": ("takeup", None),

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
+from beltrs import (Belt, BeltEnd, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
                     StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
@@ -19,6 +19,7 @@ from beltrs.scenes import hustrulid_loop
 TABLES = {
     "scene": Scene,
     "belt": Belt,
+    "belt_end": BeltEnd,
     "pulley": Pulley,
     "friction": Friction,
     "takeup": Takeup,
@@ -175,6 +176,6 @@ def test_a_checkpoint_of_an_older_format_is_refused_naming_its_version(tmp_path)
         data[8:12] = old.to_bytes(4, "little")
         path.write_bytes(bytes(data))
         with pytest.raises(
-            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 4 \(.*older"
+            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 5 \(.*older"
         ):
             beltrs.Simulation.load_checkpoint(path)

@@ -48,8 +48,25 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+try:  # the engine's error, when the extension is built (as part of the beltrs package)
+    from ._beltrs import SceneError
+except ImportError:  # loaded on its own (by file path), or without the extension
+    try:
+        from beltrs._beltrs import SceneError
+    except ImportError:
+
+        class SceneError(Exception):  # type: ignore[no-redef]
+            """Bad input to a reference solution (stands in for ``beltrs.SceneError`` when
+            this module runs without the compiled extension)."""
+
+
 __all__ = [
+    "Capstan",
     "CreepDrive",
+    "HangingRope",
+    "capstan",
+    "discrete_capstan_ratio",
+    "hanging_rope",
     "TakeupStatics",
     "TakeupStepResponse",
     "axial_wave_speed",
@@ -162,7 +179,7 @@ def _integrate_segment(
         End tension [N] and stretch of the segment [m].
     """
     if n < 1:
-        raise ValueError("n must be a positive integer")
+        raise RuntimeError(f"internal: n = {n!r} RK4 steps")
     h = (x_end - x_start) / n
     nodes = x_start + h * np.arange(n + 1, dtype=float)
     rate_nodes = weight_per_material_length * np.asarray(height_rate(nodes), dtype=float)
@@ -220,7 +237,7 @@ def _brent(
     if fb == 0.0:
         return b
     if fa * fb > 0.0:
-        raise ValueError("root is not bracketed")
+        raise RuntimeError("internal: Brent's method called without a bracketed root")
     if abs(fa) < abs(fb):
         a, b, fa, fb = b, a, fb, fa
     c, fc = a, fa
@@ -285,8 +302,8 @@ def axial_wave_speed(axial_stiffness: float, mass_per_length: float) -> float:
     Returns:
         Wave speed [m/s].
     """
-    if axial_stiffness <= 0.0 or mass_per_length <= 0.0:
-        raise ValueError("axial_stiffness and mass_per_length must be positive")
+    _check_positive("axial_stiffness", axial_stiffness)
+    _check_positive("mass_per_length", mass_per_length)
     return math.sqrt(axial_stiffness / mass_per_length)
 
 
@@ -345,15 +362,25 @@ def two_pulley_takeup_statics(
         :class:`TakeupStatics` with tensions [N], take-up displacement [m]
         (negative = down), strand length [m] and lower-arc belt mass [kg].
     """
-    ea = float(axial_stiffness)
-    rho = float(mass_per_length)
-    r = float(radius)
-    h_c = float(centre_distance)
-    mass = float(takeup_mass)
-    if min(ea, rho, r, h_c, g) <= 0.0 or mass < 0.0:
-        raise ValueError("physical parameters must be positive")
-    if n < 1:
-        raise ValueError("n must be a positive integer")
+    ea = _number("axial_stiffness", axial_stiffness)
+    rho = _number("mass_per_length", mass_per_length)
+    r = _number("radius", radius)
+    h_c = _number("centre_distance", centre_distance)
+    mass = _number("takeup_mass", takeup_mass)
+    g = _number("g", g)
+    for name, value in (
+        ("axial_stiffness", ea),
+        ("mass_per_length", rho),
+        ("radius", r),
+        ("centre_distance", h_c),
+        ("g", g),
+    ):
+        _check_positive(name, value)
+    _check_non_negative("takeup_mass", mass)
+    if belt_length is not None:
+        _check_positive("belt_length", float(belt_length))
+    if not (isinstance(n, int) and n >= 1):
+        raise SceneError(f"n = {n!r}: must be a positive integer (RK4 steps per segment)")
     path_length = 2.0 * h_c + 2.0 * math.pi * r
     material_length = path_length if belt_length is None else float(belt_length)
     w = rho * g
@@ -489,6 +516,10 @@ unchanged, i.e. ``step = 3000/30600``), which gives -0.2234 m exactly and
         :class:`TakeupStepResponse` with the static shift [m] and the two
         frequency estimates [Hz].
     """
+    _check_positive("takeup_mass", takeup_mass)
+    step = _number("step", step)
+    if not (math.isfinite(step) and step > -1.0):
+        raise SceneError(f"step = {step!r}: must be finite and > -1 (the stepped mass M (1 + step) must stay > 0)")
     common = dict(
         axial_stiffness=axial_stiffness,
         mass_per_length=mass_per_length,
@@ -559,9 +590,26 @@ class CreepDrive:
     centrifugal: tuple[float, float]
 
 
+def _number(name: str, value: object) -> float:
+    """``value`` as a float, or a :class:`SceneError` naming ``name``."""
+    if isinstance(value, bool):
+        raise SceneError(f"{name} = {value!r}: expected a number")
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise SceneError(f"{name} = {value!r}: expected a number") from None
+
+
 def _check_positive(name: str, value: float) -> None:
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} = {value!r}: must be finite and > 0")
+    v = _number(name, value)
+    if not (math.isfinite(v) and v > 0.0):
+        raise SceneError(f"{name} = {value!r}: must be finite and > 0")
+
+
+def _check_non_negative(name: str, value: float) -> None:
+    v = _number(name, value)
+    if not (math.isfinite(v) and v >= 0.0):
+        raise SceneError(f"{name} = {value!r}: must be finite and >= 0")
 
 
 def two_pulley_creep(
@@ -616,8 +664,9 @@ def two_pulley_creep(
         :class:`CreepDrive`.
 
     Raises:
-        ValueError: a non-physical argument, or a load beyond the capstan limit (the slip
-            arc would exceed the smaller wrap: the belt slides).
+        beltrs.SceneError: a non-physical argument (naming it, its value and the rule), or a
+            load beyond the capstan limit (the slip arc would exceed the smaller wrap: the
+            belt slides).
     """
     for name, value in (
         ("drive_radius", drive_radius),
@@ -630,11 +679,12 @@ def two_pulley_creep(
         ("drive_speed", drive_speed),
     ):
         _check_positive(name, value)
-    if not (math.isfinite(load_torque) and load_torque >= 0.0):
-        raise ValueError(f"load_torque = {load_torque!r}: must be finite and >= 0")
+    _check_non_negative("load_torque", load_torque)
+    if not (isinstance(quadrature, int) and quadrature >= 2):
+        raise SceneError(f"quadrature = {quadrature!r}: must be an integer >= 2 (Gauss-Legendre points)")
     r1, r2, d, ea, rho = drive_radius, driven_radius, centre_distance, axial_stiffness, mass_per_length
     if d <= abs(r2 - r1):
-        raise ValueError(f"centre_distance = {d!r}: must exceed |driven_radius - drive_radius|")
+        raise SceneError(f"centre_distance = {d!r}: must exceed |driven_radius - drive_radius| (here {abs(r2 - r1)!r})")
     beta = math.asin((r2 - r1) / d)
     span = math.sqrt(d * d - (r2 - r1) ** 2)
     wrap1, wrap2 = math.pi - 2.0 * beta, math.pi + 2.0 * beta
@@ -684,7 +734,7 @@ def two_pulley_creep(
         kappa = new
     t1, t2, phi = solve(kappa)
     if phi > min(wrap1, wrap2):
-        raise ValueError(
+        raise SceneError(
             f"load_torque = {load_torque!r}: the slip arc ({phi:.4f} rad) would exceed the wrap "
             f"({min(wrap1, wrap2):.4f} rad): the belt slides (capstan limit)"
         )
@@ -705,4 +755,160 @@ def two_pulley_creep(
         slack_speed=v2,
         mass_flow=q,
         centrifugal=(q * v1, q * v2),
+    )
+
+
+# --------------------------------------------------------------------------
+# Capstan (Euler-Eytelwein) and the hanging rope of a hoist
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Capstan:
+    """Tension ratios of a belt over a pulley by the capstan (Euler-Eytelwein) law.
+
+    Attributes:
+        wrap: wrap angle theta [rad].
+        onset_ratio: T_tight/T_slack at which sliding starts, ``exp(mu_s theta)`` [-]: a belt
+            at rest on the pulley can hold any ratio up to it.
+        sliding_ratio: T_tight/T_slack while the belt slides over the whole wrap,
+            ``exp(mu_k theta)`` [-].
+    """
+
+    wrap: float
+    onset_ratio: float
+    sliding_ratio: float
+
+
+def capstan(*, static: float, wrap: float, kinetic: float | None = None) -> Capstan:
+    """The capstan law (Euler 1762, Eytelwein 1808) for a perfectly flexible belt on a rigid
+    pulley with Coulomb friction, without centrifugal tension or belt weight (exact for that
+    model).
+
+    Along a wrap where the belt slides, dT/dpsi = mu T (the normal pressure per unit length
+    is T/r and the friction mu T/r), so T_tight/T_slack = exp(mu theta). A belt that does
+    not slide can carry any ratio up to ``exp(mu_s theta)`` (the onset of sliding); once it
+    slides over the whole wrap the ratio is ``exp(mu_k theta)``.
+
+    Args:
+        static: mu_s [-], > 0.
+        wrap: theta [rad], > 0 (may exceed 2 pi: a rope turned several times round a
+            bollard).
+        kinetic: mu_k [-], in [0, mu_s]. Default: equal to ``static``.
+
+    Returns:
+        :class:`Capstan`.
+
+    Raises:
+        beltrs.SceneError: a bad argument (named, with its value and the rule).
+    """
+    _check_positive("static", static)
+    _check_positive("wrap", wrap)
+    mu_k = static if kinetic is None else kinetic
+    _check_non_negative("kinetic", mu_k)
+    if mu_k > static:
+        raise SceneError(f"kinetic = {kinetic!r}: must not exceed static ({static!r})")
+    return Capstan(wrap=float(wrap), onset_ratio=math.exp(static * wrap), sliding_ratio=math.exp(mu_k * wrap))
+
+
+def discrete_capstan_ratio(*, mu: float, wrap: float, element_angle: float) -> float:
+    """The tension ratio over a wrap ``wrap`` (rad) of a belt of nodes, each turning it by
+    ``element_angle`` (rad) and sliding with ``mu``: per node
+    (1 + mu tan(a/2))/(1 - mu tan(a/2)) (its normal force is (T_a + T_b) sin(a/2), its
+    friction (T_b - T_a) cos(a/2)), over ``wrap/element_angle`` nodes. It exceeds
+    ``exp(mu wrap)`` by about ``exp(mu wrap (1 + mu^2) a^2/12)``; the engine's default
+    element count keeps that within 0.5 % (docs/belt-drives.md).
+
+    Raises:
+        beltrs.SceneError: a bad argument, or ``mu tan(a/2) >= 1`` (no finite ratio).
+    """
+    _check_positive("mu", mu)
+    _check_positive("wrap", wrap)
+    _check_positive("element_angle", element_angle)
+    x = mu * math.tan(0.5 * element_angle)
+    if not (element_angle < math.pi and x < 1.0):
+        raise SceneError(f"element_angle = {element_angle!r}: mu*tan(a/2) = {x!r} must be < 1 (a < pi)")
+    return ((1.0 + x) / (1.0 - x)) ** (wrap / element_angle)
+
+
+@dataclass(frozen=True)
+class HangingRope:
+    """A vertical rope (or belt) of unstretched length L hanging a mass m: the hoist.
+
+    Attributes:
+        bottom_tension: tension at the mass, ``m g`` [N].
+        top_tension: tension at the top, ``(m + rho L) g`` [N].
+        stretch: elongation under its own weight and the mass,
+            ``(m g L + rho g L^2/2)/EA`` [m].
+        frequency: fundamental frequency of the mass bouncing on the rope, fixed at the top
+            [Hz], exact for the continuum: ``beta tan(beta) = rho L/m``,
+            ``f = beta c/(2 pi L)``, ``c = sqrt(EA/rho)``.
+        frequency_rayleigh: Rayleigh's estimate with a third of the rope's mass,
+            ``sqrt(EA/(L (m + rho L/3)))/(2 pi)`` [Hz].
+    """
+
+    bottom_tension: float
+    top_tension: float
+    stretch: float
+    frequency: float
+    frequency_rayleigh: float
+
+    def tension(self, s0: float | np.ndarray, *, mass: float, mass_per_length: float, g: float = 9.81):
+        """Tension at unstretched distance ``s0`` (m) above the mass: ``(m + rho s0) g`` [N]."""
+        return (mass + mass_per_length * np.asarray(s0, dtype=float)) * g
+
+
+def hanging_rope(
+    *, axial_stiffness: float, mass_per_length: float, length: float, mass: float, g: float = 9.81
+) -> HangingRope:
+    """Statics and the bounce frequency of a mass hanging on an elastic rope (a hoist).
+
+    The rope is linear elastic (``T = EA strain``, strain on the unstretched length), with
+    mass ``rho`` per unstretched length, fixed at its top, vertical, under gravity ``g``.
+
+    * Statics (exact): at unstretched distance s0 above the mass the rope carries the mass
+      and the rope below, ``T = (m + rho s0) g``; the stretch is the integral of T/EA.
+    * Axial vibration: in material coordinates rho u_tt = EA u_ss (linear, whatever the
+      pre-stress), u = 0 at the top and m u_tt = -EA u_s at the mass. Its modes are
+      u = sin(beta s/L) with ``beta tan(beta) = rho L / m``; the fundamental is the root
+      in (0, pi/2), ``omega = beta c / L``. For a light rope this tends to Rayleigh's
+      ``sqrt(EA/(L (m + rho L/3)))`` (the rope's mass counts a third).
+
+    Args:
+        axial_stiffness: EA [N], > 0.
+        mass_per_length: rho [kg/m], > 0.
+        length: unstretched rope length L from the fixed point to the mass [m], > 0.
+        mass: m [kg], > 0.
+        g: gravitational acceleration [m/s^2], >= 0.
+
+    Returns:
+        :class:`HangingRope`.
+
+    Raises:
+        beltrs.SceneError: a bad argument (named, with its value and the rule).
+    """
+    for name, value in (
+        ("axial_stiffness", axial_stiffness),
+        ("mass_per_length", mass_per_length),
+        ("length", length),
+        ("mass", mass),
+    ):
+        _check_positive(name, value)
+    _check_non_negative("g", g)
+    ea, rho, big_l, m = float(axial_stiffness), float(mass_per_length), float(length), float(mass)
+    ratio = rho * big_l / m
+    # beta tan(beta) rises from 0 to +inf over (0, pi/2): one root there.
+    hi = 0.5 * math.pi * (1.0 - 1e-12)
+
+    def excess(b: float) -> float:
+        return b * math.tan(b) - ratio
+
+    beta = _brent(excess, 0.0, hi, -ratio, excess(hi), 1e-15)
+    c = math.sqrt(ea / rho)
+    return HangingRope(
+        bottom_tension=m * g,
+        top_tension=(m + rho * big_l) * g,
+        stretch=(m * g * big_l + 0.5 * rho * g * big_l**2) / ea,
+        frequency=beta * c / (2.0 * math.pi * big_l),
+        frequency_rayleigh=math.sqrt(ea / (big_l * (m + rho * big_l / 3.0))) / (2.0 * math.pi),
     )

@@ -38,7 +38,8 @@ class Model:
         stages: the stages one step runs, in order (``"loads"``, ``"axial"`` or
             ``"axial_damped"``, ``"bending"``, ``"pulley_contact"``, ``"idler_contact"``,
             ``"running_resistance"``, ``"drives"``, ``"bearing_drag"``,
-            ``"pulley_friction"``, ``"idler_friction"``, ``"speed_drives"``, ``"brakes"``).
+            ``"pulley_friction"``, ``"idler_friction"``, ``"speed_drives"``, ``"brakes"``,
+            and for an open belt ``"end_pulls"`` and ``"end_anchors"``).
             An effect the scene does not use is absent and costs nothing: ``axial``
             instead of ``axial_damped`` when the damping ratio is 0, no ``bending`` when
             EI = 0, no ``pulley_contact`` when every pulley's contact stiffness is 0, no
@@ -49,11 +50,13 @@ class Model:
         dt: time step in use, s.
         dt_limit: estimated explicit stability limit of the time step, s.
         dt_cause: the stiffest term, which sets ``dt_limit``.
-        nodes: number of belt nodes (= elements; the belt is a closed loop).
+        nodes: number of belt nodes (= elements for a closed loop; elements + 1 for an open
+            belt).
+        elements: number of belt elements.
         path_length: length of the initial belt path, m.
         wrap_angles: wrap angle on each pulley on the initial path, rad.
         rest_length: element rest lengths, m, shape ``[E]`` (read-only).
-        node_mass: node masses, kg, shape ``[E]`` (read-only).
+        node_mass: node masses, kg, shape ``[nodes]`` (read-only).
     """
 
     scene: Scene
@@ -62,6 +65,7 @@ class Model:
     dt_limit: float
     dt_cause: str
     nodes: int
+    elements: int
     path_length: float
     wrap_angles: tuple[float, ...]
     rest_length: np.ndarray
@@ -76,6 +80,7 @@ class Model:
             dt_limit=float(core.dt_limit),
             dt_cause=str(core.dt_cause),
             nodes=int(core.nodes),
+            elements=int(core.elements),
             path_length=float(core.path_length),
             wrap_angles=tuple(float(w) for w in core.wrap_angles),
             rest_length=_read_only(core.rest_length),

@@ -33,6 +33,7 @@ from ._beltrs import check_scene, check_scene_table, scene_defaults, unknown_key
 
 __all__ = [
     "Belt",
+    "BeltEnd",
     "Brake",
     "Drive",
     "Friction",
@@ -99,20 +100,39 @@ class _Table:
 @dataclass
 @_engine_table("friction")
 class Friction(_Table):
-    """Belt friction on a pulley or idler (stick-force model, thesis eq. 4.76-4.94).
+    """Belt friction on a pulley or idler.
+
+    Two models (``docs/belt-drives.md``, "Creep friction"):
+
+    * ``"stick_force"`` (default): stick-force friction (Hustrulid's thesis eq. 4.76-4.94):
+      a contact sticks while the force that holds it is within mu_s * N, and slides with
+      mu_k * N otherwise.
+    * ``"creep"``: Kubas's (2014) creep-rate friction (eq. 12-19) on pulleys: the friction
+      coefficient is a smooth function mu(Delta, v) of the creep displacement Delta of the
+      contact point (a memory kept in the state and in checkpoints) and of the relative
+      speed v. Below ``transition_speed`` the contact creeps and mu rises to mu_s (with
+      Delta up to ``creep_limit`` and with v); from 1.5 * ``transition_speed`` it slides
+      at mu_k. Pulleys only (an idler with it is refused).
 
     Attributes:
         static: static coefficient mu_s, dimensionless, >= kinetic. Default 0 (no friction
             stage is compiled when every body has mu_s = 0).
         kinetic: kinetic coefficient mu_k, dimensionless. Default: equal to ``static``.
-        model: ``"stick_force"`` (default) or ``"none"`` (no coefficients allowed). The
-            creep model is not implemented yet: ``"creep"`` is refused with a message
-            saying so.
+        model: ``"stick_force"`` (default), ``"creep"`` or ``"none"`` (no coefficients
+            allowed).
+        transition_speed: creep model only: Delta_v, m/s, > 0. Default None: 1e-3 m/s
+            (creep below it, sliding at mu_k above 1.5 * Delta_v; slip arcs of belt drives
+            and conveyors slide at 1e-2 m/s and more).
+        creep_limit: creep model only: Delta_max, the creep displacement at which mu
+            reaches mu_s, m, > 0. Default None: 1e-4 m (0.1 mm, the presliding displacement
+            of a rubber cover).
     """
 
     static: float
     kinetic: Optional[float]
     model: str
+    transition_speed: Optional[float]
+    creep_limit: Optional[float]
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -421,6 +441,58 @@ class Load(_Table):
         _normalise(self)
 
 
+#: How an end of an open belt is held (:class:`BeltEnd`).
+END_HOLDS = ("anchor", "force", "mass")
+
+
+@dataclass
+@_engine_table("belt_end")
+class BeltEnd(_Table):
+    """One end of an open belt (``Belt.start``, ``Belt.end``; docs/open-belts.md).
+
+    A belt with both ends is open: it runs from ``start.point`` round the pulleys in the
+    order listed to ``end.point``. Without them it is a closed loop.
+
+    Attributes:
+        point: where the end is placed, (x, y), m: the belt runs straight from here to its
+            tangent point on the first pulley (start), or from the last pulley to here
+            (end). Must lie outside every pulley. Required.
+        hold: ``"anchor"`` (default): fixed at ``point``; ``"force"``: pulled by a
+            constant ``force`` along the initial end span, away from the pulley;
+            ``"mass"``: a hanging ``mass`` (a hoist's load) under the scene's gravity.
+        force: with hold ``"force"``: the pull at t = 0, N, > 0. Default None.
+        force_rate: with hold ``"force"``: its rate of change, N/s, finite: the pull is
+            force + force_rate * t (absolute simulated time), never below 0 (a slowly loaded
+            capstan, a winch taking up load). Default None: a constant pull.
+        mass: with hold ``"mass"``: the hanging mass, kg, > 0. Default None.
+    """
+
+    point: Optional[tuple[float, float]]
+    hold: str
+    force: Optional[float]
+    force_rate: Optional[float]
+    mass: Optional[float]
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+    @classmethod
+    def anchor(cls, point: Sequence[float]) -> "BeltEnd":
+        """An end fixed at ``point`` (m)."""
+        return cls(point=point, hold="anchor")
+
+    @classmethod
+    def pulled(cls, point: Sequence[float], force: float, force_rate: Optional[float] = None) -> "BeltEnd":
+        """An end at ``point`` (m) pulled by ``force`` (N) away from its pulley, rising at
+        ``force_rate`` (N/s) if given."""
+        return cls(point=point, hold="force", force=force, force_rate=force_rate)
+
+    @classmethod
+    def hanging(cls, point: Sequence[float], mass: float) -> "BeltEnd":
+        """An end at ``point`` (m) carrying a hanging ``mass`` (kg)."""
+        return cls(point=point, hold="mass", mass=mass)
+
+
 @dataclass
 @_engine_table("belt")
 class Belt(_Table):
@@ -433,8 +505,12 @@ class Belt(_Table):
         damping_ratio: axial damping as a fraction of one element's critical damping
             (thesis eq. 4.3); 0 compiles undamped axial springs. Default 0.
         length: unstretched length, m. Default None = length of the initial path.
-        elements: number of elements. Default None = fewest with each element at most
-            ``max_element_angle`` of arc on the smallest pulley.
+        elements: number of elements (nodes - 1 for an open belt). Default None = fewest
+            with each element at most ``max_element_angle`` of arc on the smallest pulley
+            and, while ``max_element_angle`` is at its default, on each pulley with friction
+            mu_s over a wrap theta at most sqrt(12 ln(1.005)/(mu_s theta (1 + mu_s^2))) rad
+            of arc: the node-discrete Euler-Eytelwein ratio within 0.5 %
+            (docs/belt-drives.md).
         max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
             only when ``elements`` is None.
         tension_only: if True a slack element carries no compression. Default False.
@@ -444,6 +520,10 @@ class Belt(_Table):
             unit slip. Raise it for a pre-strained elastic drive belt (the belt-drive
             literature's benchmarks are pre-strained 5.26 %). Default 0.1.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
+        start: the first end of an open belt (:class:`BeltEnd`); give ``start`` and
+            ``end`` together. Default None: a closed loop.
+        end: the last end of an open belt. Default None. An open belt of n elements has
+            n + 1 nodes; ``Result.tension`` then has n columns.
     """
 
     axial_stiffness: float
@@ -456,6 +536,8 @@ class Belt(_Table):
     tension_only: bool
     formulation: str
     max_placement_strain: float
+    start: Optional[BeltEnd]
+    end: Optional[BeltEnd]
 
     def __post_init__(self) -> None:
         _normalise(self)

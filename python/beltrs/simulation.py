@@ -214,8 +214,13 @@ class Simulation:
 
     @property
     def nodes(self) -> int:
-        """Number of belt nodes (= elements)."""
+        """Number of belt nodes (= elements for a closed loop; elements + 1 for an open belt)."""
         return int(self._core.nodes)
+
+    @property
+    def elements(self) -> int:
+        """Number of belt elements (the nodes of a closed loop; nodes - 1 for an open belt)."""
+        return int(self._core.elements)
 
     @property
     def time(self) -> float:

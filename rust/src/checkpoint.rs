@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; older versions are refused, naming their version)
+//! # Format (version 5; version 4 still reads; older versions are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (4) |
+//! | 8..12 | format version, `u32` (5) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -24,8 +24,10 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates). Strings, byte strings and
-//! arrays are a `u64` length followed by the items.
+//! element, end element, start and end material coordinates); since version 5, the friction
+//! memory (the creep displacement of every belt point on every pulley, empty without creep
+//! friction). Strings, byte strings and arrays are a `u64` length followed by the items.
+//! Version 4 files (no friction memory: no creep friction existed) still read.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -52,7 +54,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -210,6 +212,11 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        (
+            "friction memory values",
+            s.creep.len(),
+            m.creep_memory_len(),
+        ),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -562,6 +569,7 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    w.f64s(&s.creep);
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -606,6 +614,11 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    let creep = if r.version >= 5 {
+        r.f64s("friction memory")?
+    } else {
+        Vec::new()
+    };
     Ok(State {
         time,
         step,
@@ -621,6 +634,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        creep,
     })
 }
 

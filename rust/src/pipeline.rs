@@ -85,6 +85,9 @@ pub struct Scratch {
     /// Running-resistance force of each idler on the belt, N, along the contact tangent
     /// (the belt receives −f·t; 0 when the idler has none or is not touched).
     pub idler_resistance: Vec<f64>,
+    /// Rates of the friction memory from this evaluation: (index into
+    /// [`State::creep`], dΔ/dt in m/s). The integrator advances the memory with them.
+    pub creep_rate: Vec<(usize, f64)>,
 }
 
 impl Scratch {
@@ -122,6 +125,7 @@ impl Scratch {
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
+            creep_rate: Vec::new(),
         }
     }
 
@@ -137,6 +141,7 @@ impl Scratch {
             .for_each(|f| *f = FrictionOutcome::default());
         self.idler_torque.iter_mut().for_each(|t| *t = 0.0);
         self.idler_resistance.iter_mut().for_each(|f| *f = 0.0);
+        self.creep_rate.clear();
     }
 }
 
@@ -204,6 +209,8 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::IdlerFriction => crate::friction::stage::idler_friction(cx),
             Stage::SpeedDrives => crate::drives::hold::speed_drives(cx),
             Stage::Brakes => crate::drives::hold::brakes(cx),
+            Stage::EndPulls => crate::belt::ends::end_pulls(cx),
+            Stage::EndAnchors => crate::belt::ends::end_anchors(cx),
         }
         if let (Some(t0), Some(profile)) = (started, profile.as_mut()) {
             profile[k] += t0.elapsed().as_secs_f64();

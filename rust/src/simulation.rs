@@ -50,7 +50,8 @@ impl Simulation {
             model.nodes,
             model.pulleys.len(),
             model.idlers.len(),
-        );
+        )
+        .with_elements(model.elements);
         Simulation {
             model,
             state,
@@ -110,6 +111,11 @@ impl Simulation {
             &self.state.load_edges,
             model.load_belt(),
         );
+        // Friction memory: kept while the model keeps one, zero when creep friction is
+        // switched on, dropped when it is switched off.
+        if self.state.creep.len() != model.creep_memory_len() {
+            self.state.creep = vec![0.0; model.creep_memory_len()];
+        }
         self.scratch = Scratch::new(&model);
         self.inertia = Inertia::physical(&model, &self.state.node_mass);
         self.model = model;
@@ -204,7 +210,8 @@ impl Simulation {
             self.model.nodes,
             self.model.pulleys.len(),
             self.model.idlers.len(),
-        );
+        )
+        .with_elements(self.model.elements);
         self.record_every = every.max(1);
         self.record_counter = 0;
         self.max_samples = max_samples.max(2);
@@ -424,10 +431,10 @@ impl Simulation {
         &self.scratch.force
     }
 
-    /// Element tensions at the current state, N.
+    /// Element tensions at the current state, N (one per element: `model.elements`).
     pub fn tensions(&mut self) -> &[f64] {
         self.evaluate(Effects::ALL);
-        &self.scratch.tension
+        &self.scratch.tension[..self.model.elements]
     }
 
     /// Number of pulley contacts that slip at the current state (all effects on).

@@ -55,6 +55,12 @@ pub struct State {
     pub node_mass: Vec<f64>,
     /// Where each load's zone is (`crate::loads`).
     pub load_edges: Vec<LoadEdges>,
+    /// Friction memory: the creep displacement Δ of each (belt point, pulley) pair, m, at
+    /// `creep[i * pulleys + j]` (`crate::friction::creep`), reset to 0 when the point
+    /// leaves the pulley. Empty unless a pulley has creep friction. An ODE state: the
+    /// integrators advance it with the rates of the last evaluation
+    /// (`Scratch::creep_rate`).
+    pub creep: Vec<f64>,
 }
 
 impl State {
@@ -87,6 +93,7 @@ impl State {
             drive_work: 0.0,
             node_mass,
             load_edges,
+            creep: vec![0.0; model.creep_memory_len()],
         }
     }
 

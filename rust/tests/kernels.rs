@@ -256,6 +256,7 @@ fn axial_pass_in_pairs_and_with_scalars_matches_a_plain_loop_bit_for_bit() {
                         mass: &mass,
                         uniform,
                         damped,
+                        open: false,
                         tension_only,
                         gravity: g,
                     };

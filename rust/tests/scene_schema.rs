@@ -126,7 +126,7 @@ fn conversions_name_the_key_the_user_wrote() {
             ("model", Value::Str("none".into())),
             ("static", Value::Float(0.5))
         ])),
-        "pulleys[0].friction.static = 0.5: friction model \"none\" takes no coefficients (use \"stick_force\")"
+        "pulleys[0].friction.static = 0.5: friction model \"none\" takes no coefficients (use \"stick_force\" or \"creep\")"
     );
     assert!(error(&friction(&[("model", Value::Str("stickforce".into()))]))
         .starts_with("pulleys[0].friction.model = \"stickforce\": unknown friction model, did you mean \"stick_force\"?"));

@@ -29,7 +29,27 @@
 use crate::contact::nonlinear::cubic_step;
 use crate::error::{BeltError, BeltResult};
 
-/// Parameters of the creep-rate friction law. Defaults: case K's values (Kubas section 4).
+/// Default Δv of a scene's creep friction ([`CreepFriction::transition_speed`]), m/s:
+/// 10⁻³ (1 mm/s). Below Δv the contact creeps (µ rises to µs with the creep displacement
+/// and the speed), above 1.5·Δv it slides at µk. Physics sets both sides of the choice:
+/// rubber on steel passes from creep to sliding at speeds of the order of mm/s, and the
+/// sliding speeds that matter in belt drives and conveyors, those of the slip arcs
+/// (belt speed × the strain difference across the pulley, 10⁻² m/s and more for a drive
+/// near its capacity at ≥ 1 m/s), lie well above 1.5·Δv, so slip arcs slide at µk as in
+/// creep theory; while a belt held on a pulley creeps at far less. Kubas's 10⁻⁵ m/s is
+/// accepted too: under central differences the law is applied with a stick limit (see
+/// [`pulley_creep_friction`]), so Δv does not limit the step.
+pub const DEFAULT_TRANSITION_SPEED: f64 = 1e-3;
+
+/// Default Δmax of a scene's creep friction ([`CreepFriction::creep_limit`]), m: 10⁻⁴
+/// (0.1 mm, Kubas's value): the tangential displacement over which a rubber cover's
+/// contact builds up its full static friction (presliding displacement, of the order of
+/// the cover's shear deflection, 10⁻⁵–10⁻⁴ m).
+pub const DEFAULT_CREEP_LIMIT: f64 = 1e-4;
+
+/// Parameters of the creep-rate friction law. Defaults: case K's values (Kubas section 4);
+/// a scene's creep friction defaults to [`DEFAULT_TRANSITION_SPEED`] and
+/// [`DEFAULT_CREEP_LIMIT`] instead.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CreepFriction {
     /// µs: static friction coefficient, ≥ µk. Default 1.05.
@@ -210,4 +230,122 @@ impl CreepMemory {
         self.creep.copy_from_slice(data);
         Ok(())
     }
+}
+
+use crate::contact::PulleyContacts;
+use crate::forces::perp;
+use crate::friction::FrictionOutcome;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// The pulley seen by the creep friction of its contacts.
+#[derive(Debug, Clone, Copy)]
+pub struct CreepPulley {
+    /// Radius, m.
+    pub radius: f64,
+    /// Polar inertia, kg·m² (`f64::INFINITY` for a pulley whose speed is prescribed this
+    /// step: a brake or a speed-controlled drive holds it).
+    pub inertia: f64,
+    /// Angular speed, rad/s (counter-clockwise positive), at the velocities' instant.
+    pub omega: f64,
+    /// Centre velocity, m/s.
+    pub center_velocity: V2,
+}
+
+/// Where one pulley's creep memory lives in the state's flat memory: Δ of belt point `i`
+/// at `memory[i * stride + column]`, m.
+#[derive(Debug, Clone, Copy)]
+pub struct MemoryColumn {
+    /// Row length (number of pulleys).
+    pub stride: usize,
+    /// This pulley's column.
+    pub column: usize,
+}
+
+/// Creep friction (Kubas eq. 12–19, [`CreepFriction::coefficient`]) at the belt points
+/// touching one pulley. Formulation-agnostic: it reads belt points (`contacts.node`
+/// indexes `v`, `mass`, `force` and the memory rows), their velocities and the forces
+/// on them so far, and adds the friction force to `force`.
+///
+/// For contact k at point i with outward normal n and tangent t = Ẑ × n, the speed of the
+/// pulley surface relative to the point is v = Rω + t·v_c − t·v_i (Kubas's v_T, eq. 18),
+/// and the law gives the force µ(Δ, v)·N·t on the point (−µ(Δ, v)·N·t on the pulley).
+/// dΔ/dt = [`CreepFriction::creep_rate`] is pushed to `rates` as (memory index, rate):
+/// the integrator advances the memory with it, so the law is an ODE on the state.
+///
+/// `dt` is the velocity update of the coming explicit step (s), or `None` for an
+/// integrator that resolves the law itself (an adaptive Runge–Kutta: the law is applied as
+/// it is). With `Some(dt)` the law gets a **stick limit**, the stiff limit of solving it
+/// implicitly for the end-of-step speed: in the creep range the force changes by up to
+/// 1.5·µs·N/Δv per m/s, a damping that an explicit step resolves only below
+/// m·Δv/(µs·N) (10⁻¹⁰ s for case K). Where the law's force would reverse the relative
+/// speed within the step, the point instead takes the stick force, the force that brings
+/// that speed to zero (or µk·N along it beyond µs·N); the pulley's share of the motion is
+/// included through the effective mass m/(1 + R²Σm/I). Friction then stops a slip but
+/// never reverses it, whatever Δv. With `dt = Some(∞)` (the static relaxation) every point
+/// takes the stick force within µs·N (a quasi-static limit) and the memory is not
+/// advanced.
+#[allow(clippy::too_many_arguments)]
+pub fn pulley_creep_friction(
+    law: &CreepFriction,
+    contacts: &PulleyContacts,
+    pulley: &CreepPulley,
+    v: &[V2],
+    mass: &[f64],
+    dt: Option<f64>,
+    memory: &[f64],
+    at: MemoryColumn,
+    force: &mut [V2],
+    rates: &mut Vec<(usize, f64)>,
+) -> FrictionOutcome {
+    let r = pulley.radius;
+    let (mu_s, mu_k) = (law.static_coefficient, law.kinetic_coefficient);
+    let mut out = FrictionOutcome::default();
+    let quasi_static = dt.is_some_and(|dt| !dt.is_finite());
+    // The pulley's share of a stick: R²·Σm/I over the points on it (0 if it is held).
+    let share = if pulley.inertia.is_finite() {
+        let m_sum: f64 = contacts.node.iter().map(|&i| mass[i]).sum();
+        r * r * m_sum / pulley.inertia
+    } else {
+        0.0
+    };
+    for k in 0..contacts.len() {
+        let i = contacts.node[k];
+        let t = perp(contacts.normal[k]);
+        let normal = contacts.normal_force[k];
+        let speed = r * pulley.omega + t.dot(&pulley.center_velocity) - t.dot(&v[i]);
+        let idx = i * at.stride + at.column;
+        let creep = memory[idx];
+        let mut f = law.coefficient(creep, speed) * normal;
+        let mut sliding = speed.abs() >= law.transition_speed;
+        if let Some(dt) = dt {
+            // The force along t that gives the point the pulley's surface speed at the end
+            // of the step (the other forces on it included).
+            let stick = if quasi_static {
+                -t.dot(&force[i])
+            } else {
+                mass[i] / (1.0 + share) * speed / dt - t.dot(&force[i])
+            };
+            if quasi_static || (speed != 0.0 && (f - stick) * speed > 0.0) {
+                if stick.abs() <= mu_s * normal {
+                    f = stick;
+                    sliding = false;
+                } else {
+                    f = mu_k * normal * stick.signum();
+                    sliding = true;
+                }
+            }
+        }
+        if !quasi_static {
+            rates.push((idx, law.creep_rate(creep, speed)));
+        }
+        force[i] += t * f;
+        // On the pulley: −f along t.
+        out.force -= t * f;
+        out.tangential -= f;
+        out.slipping += usize::from(sliding);
+    }
+    out.torque = r * out.tangential;
+    out
 }

@@ -31,21 +31,42 @@ pub fn running_resistance(cx: &mut StageContext<'_>) {
     }
 }
 
-/// Stick-force friction between belt and pulleys (thesis eq. 4.76–4.94, figure 4.9),
-/// solved together with a brake's or speed-controlled drive's hold when the pulley has one.
+/// Belt friction on the pulleys: stick-force friction (thesis eq. 4.76–4.94, figure 4.9),
+/// solved together with a brake's or speed-controlled drive's hold when the pulley has one,
+/// or creep friction (Kubas eq. 12–19, [`super::creep::pulley_creep_friction`]).
 pub fn pulley_friction(cx: &mut StageContext<'_>) {
     if !cx.effects.friction {
         return;
     }
     let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
-    let (m, s, sc) = (cx.model, &*cx.state, &mut *cx.scratch);
+    let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
-        let FrictionModel::StickForce {
-            static_coefficient,
-            kinetic_coefficient,
-        } = p.friction
-        else {
-            continue;
+        let prescribed = if drives {
+            p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, drift))
+        } else {
+            None
+        };
+        let (static_coefficient, kinetic_coefficient) = match p.friction {
+            FrictionModel::StickForce {
+                static_coefficient,
+                kinetic_coefficient,
+            } => (static_coefficient, kinetic_coefficient),
+            FrictionModel::Creep(law) => {
+                if law.static_coefficient > 0.0 {
+                    creep_on_pulley(
+                        &law,
+                        j,
+                        prescribed.is_some(),
+                        friction_dt,
+                        m,
+                        s,
+                        sc,
+                        &cx.inertia.mass,
+                    );
+                }
+                continue;
+            }
+            FrictionModel::None => continue,
         };
         if static_coefficient == 0.0 || sc.contacts[j].is_empty() {
             continue;
@@ -58,11 +79,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             applied_torque: sc.drive_torque[j] + sc.bearing_torque[j],
             mu_static: static_coefficient,
             mu_kinetic: kinetic_coefficient,
-            prescribed: if drives {
-                p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, drift))
-            } else {
-                None
-            },
+            prescribed,
         };
         let out = super::pulley_stick_friction(
             &sc.contacts[j],
@@ -76,6 +93,60 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         sc.pulley_force[j] += out.force;
         sc.friction[j] = out;
     }
+}
+
+/// Creep friction on pulley `j` (`held`: a brake or speed-controlled drive prescribes its
+/// speed this step; `mass`: the integrator's point masses). First forgets the creep of the points in the pulley's search window
+/// that no longer touch it (a contact that separates starts afresh), then applies the law.
+#[allow(clippy::too_many_arguments)]
+fn creep_on_pulley(
+    law: &super::creep::CreepFriction,
+    j: usize,
+    held: bool,
+    friction_dt: f64,
+    m: &crate::model::Model,
+    s: &mut crate::state::State,
+    sc: &mut crate::pipeline::Scratch,
+    mass: &[f64],
+) {
+    let stride = m.pulleys.len();
+    let n = s.position.len();
+    let window = s.pulley_window[j];
+    let contacts = &sc.contacts[j];
+    // Contacts are listed in window order: walk both together.
+    let mut next = 0;
+    for w in 0..window.len {
+        let i = (window.first + w) % n;
+        if next < contacts.len() && contacts.node[next] == i {
+            next += 1;
+        } else {
+            s.creep[i * stride + j] = 0.0;
+        }
+    }
+    if contacts.is_empty() {
+        return;
+    }
+    let p = &m.pulleys[j];
+    let pulley = super::creep::CreepPulley {
+        radius: p.radius,
+        inertia: if held { f64::INFINITY } else { p.inertia },
+        omega: s.pulley_omega[j],
+        center_velocity: s.pulley_center_velocity(m, j),
+    };
+    let out = super::creep::pulley_creep_friction(
+        law,
+        contacts,
+        &pulley,
+        &s.velocity,
+        mass,
+        Some(friction_dt),
+        &s.creep,
+        super::creep::MemoryColumn { stride, column: j },
+        &mut sc.force,
+        &mut sc.creep_rate,
+    );
+    sc.pulley_force[j] += out.force;
+    sc.friction[j] = out;
 }
 
 /// Stick-force friction between belt and idlers (thesis eq. 4.103–4.117, re-derived).

@@ -164,12 +164,17 @@ impl Simulation {
         self.finish_step(dt, nodes_finite, check)
     }
 
-    /// Close a step of `drift` (s): advance time and step count, and report the first
+    /// Close a step of `drift` (s): advance time (not in the static relaxation) and step
+    /// count, and report the first
     /// non-finite quantity unless the nodes were finite and `check` (and the drives'
     /// work) is.
     fn finish_step(&mut self, drift: f64, nodes_finite: bool, check: f64) -> BeltResult<()> {
         let s = &mut self.state;
-        s.time += drift;
+        // The static relaxation's steps (fictitious masses) are not time: it holds still
+        // whatever depends on time (e.g. a rising end pull), as it restores it afterwards.
+        if self.inertia.physical {
+            s.time += drift;
+        }
         s.step += 1;
         if !(nodes_finite && (check + s.drive_work).is_finite()) {
             return Err(self.locate_non_finite());
@@ -179,10 +184,14 @@ impl Simulation {
 
     /// The central-difference update of every rigid degree of freedom of the layout:
     /// speed += kick·F/m (or the held speed), coordinate += drift·speed, the drives' work,
-    /// the takeups' stops. Returns a sum that is finite only if every value is.
+    /// the takeups' stops; and the friction memory, Δ += drift·dΔ/dt. Returns a sum that is finite only if every value is.
     fn integrate_rigid(&mut self, kick: f64, drift: f64) -> f64 {
         let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
         let mut check = 0.0;
+        // The friction memory, dΔ/dt from the evaluation (explicit Euler over the drift).
+        for &(k, rate) in &sc.creep_rate {
+            s.creep[k] += drift * rate;
+        }
         for &d in &m.dofs.rigid {
             let force = sc.rigid_force(m, d);
             let mass = self.inertia.rigid(m, d);

@@ -3,7 +3,7 @@
 
 use crate::error::{BeltError, BeltResult};
 use crate::geometry::BeltPath;
-use crate::scene::{Scene, MAX_ELEMENTS};
+use crate::scene::{BeltParams, Scene, MAX_ELEMENTS};
 use nalgebra::Vector2;
 
 /// The compiled node belt.
@@ -17,6 +17,33 @@ pub(super) struct NodeBelt {
     pub mass: Vec<f64>,
     pub inv_mass: Vec<f64>,
     pub bending_stiffness: Vec<f64>,
+    /// The ends of an open belt; `None` for a closed loop.
+    pub ends: Option<super::open::OpenEnds>,
+}
+
+/// Largest error of the tension ratio over a pulley's wrap that the default element
+/// count allows, from the node discretisation of Euler–Eytelwein: 0.5 %.
+///
+/// A node on a pulley turns the belt by the element angle Δθ and carries the friction
+/// µ·N with N = (T_a + T_b)·sin(Δθ/2); at the friction limit its tension ratio is
+/// T_b/T_a = (1 + µ·tan(Δθ/2))/(1 − µ·tan(Δθ/2)), whose logarithm is
+/// µΔθ·(1 + (1 + µ²)Δθ²/12 + O(Δθ⁴)). Over a wrap θ the ratio e^{µθ} is therefore
+/// overestimated by the factor exp(µθ(1 + µ²)Δθ²/12): 4.6 % for µ = 0.5, θ = π at the
+/// thesis's 30° elements.
+pub const FRICTION_RATIO_ERROR: f64 = 0.005;
+
+/// The longest element (m) that keeps the node-discrete tension ratio over the wrap of
+/// every pulley with friction within [`FRICTION_RATIO_ERROR`]: Δθ ≤ √(12ε/(µsθ(1 + µs²)))
+/// on a pulley of radius R, wrap θ and static coefficient µs; +∞ without friction.
+fn friction_element(scene: &Scene, path: &BeltPath) -> f64 {
+    let eps = FRICTION_RATIO_ERROR.ln_1p();
+    (scene.pulleys.iter().zip(&path.wrap_angles))
+        .filter_map(|(p, &theta)| {
+            let mu = p.friction.static_coefficient();
+            (mu > 0.0 && theta > 0.0 && p.contact_stiffness > 0.0)
+                .then(|| p.radius * (12.0 * eps / (mu * theta * (1.0 + mu * mu))).sqrt())
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Discretise the scene's belt on `path`: the belt may be stretched or compressed onto
@@ -59,7 +86,15 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
     let n = match belt.elements {
         Some(n) => n,
         None => {
-            let wanted = (belt_length / (belt.max_element_angle * min_radius)).ceil();
+            // The friction rule belongs to the default mesh: a scene that sets
+            // max_element_angle has chosen its mesh.
+            let friction = if belt.max_element_angle == BeltParams::default().max_element_angle {
+                friction_element(scene, path)
+            } else {
+                f64::INFINITY
+            };
+            let longest = (belt.max_element_angle * min_radius).min(friction);
+            let wanted = (belt_length / longest).ceil();
             if wanted > MAX_ELEMENTS as f64 {
                 return Err(BeltError::invalid(
                     "belt.max_element_angle",
@@ -76,7 +111,7 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         return Err(BeltError::invalid(
             "belt.elements",
             n,
-            "a closed belt needs at least 3 elements",
+            "a belt needs at least 3 elements",
         ));
     }
     let l0 = belt_length / n as f64;
@@ -91,12 +126,14 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
             ),
         ));
     }
-    let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
-
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;
     let m_el = rho * l0;
     let c = 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt();
+    if belt.is_open() {
+        return open_belt(scene, path, n, l0, (k, c, m_el));
+    }
+    let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
     let rest_length = vec![l0; n];
     let axial_stiffness = vec![k; n];
     let axial_damping = vec![c; n];
@@ -113,5 +150,55 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         mass,
         inv_mass,
         bending_stiffness,
+        ends: None,
+    })
+}
+
+/// An open belt of `elements` elements of rest length `l0` on its open `path`:
+/// `elements + 1` nodes from the start point to the end point with equal chords. The
+/// arrays keep one entry per node; the last element entry (node n−1 back to node 0) is no
+/// element (zero stiffness and damping; the axial pass skips it). The end nodes carry half
+/// an element's mass plus a hanging mass; they have no bending spring.
+fn open_belt(
+    scene: &Scene,
+    path: &BeltPath,
+    elements: usize,
+    l0: f64,
+    (k, c, m_el): (f64, f64, f64),
+) -> BeltResult<NodeBelt> {
+    let n = elements + 1;
+    let initial_positions = super::open::place(path, n)?;
+    let ends = super::open::ends(scene, &initial_positions);
+    let mut rest_length = vec![l0; n];
+    let mut axial_stiffness = vec![k; n];
+    let mut axial_damping = vec![c; n];
+    (
+        rest_length[n - 1],
+        axial_stiffness[n - 1],
+        axial_damping[n - 1],
+    ) = (l0, 0.0, 0.0);
+    let mut mass = vec![m_el; n];
+    mass[0] = 0.5 * m_el;
+    mass[n - 1] = 0.5 * m_el;
+    for (i, e) in [(0, ends.start), (n - 1, ends.end)] {
+        if let super::open::EndModel::Mass(m) = e {
+            mass[i] += m;
+        }
+    }
+    let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+    let mut bending_stiffness = vec![scene.belt.bending_stiffness / l0; n];
+    bending_stiffness[0] = 0.0;
+    bending_stiffness[n - 1] = 0.0;
+    Ok(NodeBelt {
+        nodes: n,
+        element_length: l0,
+        initial_positions,
+        rest_length,
+        axial_stiffness,
+        axial_damping,
+        mass,
+        inv_mass,
+        bending_stiffness,
+        ends: Some(ends),
     })
 }

@@ -9,12 +9,15 @@
 
 mod belt;
 mod idlers;
+mod open;
 mod path;
 mod pulleys;
 mod stable_step;
 mod stages;
 
+pub use belt::FRICTION_RATIO_ERROR;
 pub use idlers::IdlerModel;
+pub use open::{EndModel, OpenEnds};
 pub use pulleys::{PulleyModel, TakeupModel};
 pub use stable_step::StableStep;
 pub use stages::Stage;
@@ -39,8 +42,13 @@ pub const MIN_TIME_STEP: f64 = 1e-9;
 pub struct Model {
     /// The scene this model was compiled from.
     pub scene: Scene,
-    /// Number of nodes (= number of elements; the belt is a closed loop).
+    /// Number of nodes (= number of elements for a closed loop; one more for an open belt).
     pub nodes: usize,
+    /// Number of belt elements: `nodes` for a closed loop, `nodes − 1` for an open belt
+    /// (whose arrays keep a last entry that is no element).
+    pub elements: usize,
+    /// The ends of an open belt (node 0 and node n−1); `None` for a closed loop.
+    pub ends: Option<OpenEnds>,
     /// Node masses of the belt alone, kg (thesis eq. 4.4). With loads the masses change
     /// during a run: the current ones (belt + material) are `State::node_mass`.
     pub mass: Vec<f64>,
@@ -107,6 +115,7 @@ impl Model {
             mass: node_mass,
             uniform: self.uniform,
             damped: damping && self.has_stage(Stage::AxialDamped),
+            open: self.ends.is_some(),
             tension_only: self.tension_only,
             gravity: if self.gravity > 0.0 {
                 self.gravity
@@ -119,7 +128,11 @@ impl Model {
     /// Validate the scene and compile it.
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
-        let path = path::compile(scene)?;
+        let path = if scene.belt.is_open() {
+            open::path(scene)?
+        } else {
+            path::compile(scene)?
+        };
         let belt = belt::compile(scene, &path)?;
         let pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
@@ -127,7 +140,7 @@ impl Model {
         // and the uniform-mass fast path).
         let mut loads = crate::loads::compile(&scene.loads, &path, belt.element_length)?;
         loads.retain(|l| l.mass_per_length > 0.0);
-        let stages = stages::select(scene, &pulleys, &idlers, &loads);
+        let stages = stages::select(scene, &pulleys, &idlers, &loads, belt.ends.as_ref());
         // With loads the node masses change during the run: never read them as uniform.
         let uniform = if loads.is_empty() {
             forces::Uniform::of(
@@ -149,6 +162,12 @@ impl Model {
         let mut model = Model {
             scene: scene.clone(),
             nodes: belt.nodes,
+            elements: if belt.ends.is_some() {
+                belt.nodes - 1
+            } else {
+                belt.nodes
+            },
+            ends: belt.ends,
             mass: belt.mass,
             inv_mass: belt.inv_mass,
             rest_length: belt.rest_length,
@@ -194,6 +213,16 @@ impl Model {
         model.node_stiffness_bound = stable.node_stiffness_bound;
         model.takeup_stiffness_bound = stable.takeup_stiffness_bound;
         Ok(model)
+    }
+
+    /// Length of the friction memory ([`crate::state::State::creep`]): one creep
+    /// displacement per (belt point, pulley) pair if any pulley has creep friction, else 0.
+    pub fn creep_memory_len(&self) -> usize {
+        if self.pulleys.iter().any(|p| p.friction.is_creep()) {
+            self.nodes * self.pulleys.len()
+        } else {
+            0
+        }
     }
 
     /// True if the compiled model runs `stage`.

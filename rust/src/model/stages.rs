@@ -1,6 +1,6 @@
 //! The stage list: which effects a compiled scene evaluates, in order.
 
-use super::{IdlerModel, PulleyModel};
+use super::{EndModel, IdlerModel, OpenEnds, PulleyModel};
 use crate::loads::LoadModel;
 use crate::scene::Scene;
 
@@ -39,6 +39,12 @@ pub enum Stage {
     SpeedDrives,
     /// Coulomb brakes with holding at rest.
     Brakes,
+    /// The pulls on the ends of an open belt (`belt.start`/`belt.end` with `hold =
+    /// "force"`), before the contacts and friction see the node forces.
+    EndPulls,
+    /// The anchors of an open belt (`hold = "anchor"`): the anchored end node takes no
+    /// net force (the anchor's reaction), so it stays at its point. Runs last.
+    EndAnchors,
 }
 
 impl Stage {
@@ -58,6 +64,8 @@ impl Stage {
             Stage::IdlerFriction => "idler_friction",
             Stage::SpeedDrives => "speed_drives",
             Stage::Brakes => "brakes",
+            Stage::EndPulls => "end_pulls",
+            Stage::EndAnchors => "end_anchors",
         }
     }
 }
@@ -69,7 +77,9 @@ pub(super) fn select(
     pulleys: &[PulleyModel],
     idlers: &[IdlerModel],
     loads: &[LoadModel],
+    ends: Option<&OpenEnds>,
 ) -> Vec<Stage> {
+    let ends = ends.map_or(vec![], |e| vec![e.start, e.end]);
     let mut stages = Vec::new();
     if !loads.is_empty() {
         stages.push(Stage::Loads);
@@ -81,6 +91,9 @@ pub(super) fn select(
     });
     if scene.belt.bending_stiffness > 0.0 {
         stages.push(Stage::Bending);
+    }
+    if ends.iter().any(|e| matches!(e, EndModel::Force { .. })) {
+        stages.push(Stage::EndPulls);
     }
     if pulleys.iter().any(|p| p.contact_stiffness > 0.0) {
         stages.push(Stage::PulleyContact);
@@ -111,6 +124,9 @@ pub(super) fn select(
     }
     if pulleys.iter().any(|p| p.brake.is_some()) {
         stages.push(Stage::Brakes);
+    }
+    if ends.iter().any(|e| matches!(e, EndModel::Anchor(_))) {
+        stages.push(Stage::EndAnchors);
     }
     stages
 }

@@ -240,10 +240,16 @@ impl PySimulation {
             .collect()
     }
 
-    /// Number of belt nodes (= elements).
+    /// Number of belt nodes (= elements for a closed loop; one more for an open belt).
     #[getter]
     fn nodes(&self, py: Python<'_>) -> usize {
         self.lock(py).model.nodes
+    }
+
+    /// Number of belt elements: the nodes of a closed loop, one fewer for an open belt.
+    #[getter]
+    fn elements(&self, py: Python<'_>) -> usize {
+        self.lock(py).model.elements
     }
 
     /// Simulated time, s.
@@ -273,7 +279,8 @@ impl PySimulation {
     /// Element rest lengths, m.
     #[getter]
     fn rest_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.lock(py).model.rest_length)
+        let sim = self.lock(py);
+        PyArray1::from_slice(py, &sim.model.rest_length[..sim.model.elements])
     }
 
     /// Node masses, kg.
@@ -566,6 +573,17 @@ impl PySimulation {
             array(py, &windows, &[s.pulley_window.len(), 2])?,
         )?;
         d.set_item("idler_element", s.idler_element.clone())?;
+        // Creep friction's memory: Δ (m) of each node on each pulley, [nodes, pulleys]
+        // (empty without creep friction).
+        let p = if s.creep.is_empty() {
+            0
+        } else {
+            s.pulley_omega.len()
+        };
+        d.set_item(
+            "creep_displacement",
+            array(py, &s.creep, &[if p == 0 { 0 } else { n }, p])?,
+        )?;
         Ok(d)
     }
 
@@ -638,7 +656,7 @@ fn interrupted_report() -> crate::StabiliseReport {
 fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let t = r.len();
-    let (n, p, q) = (r.nodes, r.pulleys, r.idlers);
+    let (n, p, q, e) = (r.nodes, r.pulleys, r.idlers, r.elements);
     let own = |v: Vec<f64>, shape: &[usize]| -> PyResult<Bound<'_, PyAny>> {
         Ok(PyArray1::from_vec(py, v)
             .reshape(shape.to_vec())?
@@ -668,7 +686,7 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     } = r;
     d.set_item("time", PyArray1::from_vec(py, time))?;
     if channels.tension {
-        d.set_item("tension", own(tension, &[t, n])?)?;
+        d.set_item("tension", own(tension, &[t, e])?)?;
     }
     if channels.node_position {
         d.set_item("node_position", own(node_position, &[t, n, 2])?)?;

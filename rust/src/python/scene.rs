@@ -7,7 +7,7 @@
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, IdlerSpec, LoadSpec, PulleySpec,
+    BeltEndSpec, BeltParams, BrakeSpec, DriveSpec, FrictionKeys, IdlerSpec, LoadSpec, PulleySpec,
     RecordingParams, Scene, SolverParams, TakeupSpec,
 };
 use crate::start_curve::StartCurve;
@@ -180,6 +180,7 @@ pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResul
     match table {
         "scene" => read::<Scene>(obj, path).map(drop),
         "belt" => read::<BeltParams>(obj, path).map(drop),
+        "belt_end" => read::<BeltEndSpec>(obj, path).map(drop),
         "pulley" => read::<PulleySpec>(obj, path).map(drop),
         "friction" => read::<FrictionKeys>(obj, path).map(drop),
         "takeup" => read::<TakeupSpec>(obj, path).map(drop),
@@ -226,6 +227,7 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("scene", to_py(py, &Scene::default())?)?;
     d.set_item("belt", to_py(py, &BeltParams::default())?)?;
+    d.set_item("belt_end", to_py(py, &BeltEndSpec::default())?)?;
     d.set_item("pulley", to_py(py, &PulleySpec::default())?)?;
     d.set_item("friction", to_py(py, &FrictionKeys::default())?)?;
     d.set_item("takeup", to_py(py, &TakeupSpec::default())?)?;

@@ -59,8 +59,11 @@ impl Energies {
 pub struct Recording {
     /// Channels being recorded.
     pub channels: Channels,
-    /// Nodes (= elements).
+    /// Nodes.
     pub nodes: usize,
+    /// Elements (the nodes of a closed loop, one fewer for an open belt); the width of
+    /// `tension`.
+    pub elements: usize,
     /// Pulleys.
     pub pulleys: usize,
     /// Idlers.
@@ -137,10 +140,17 @@ impl Recording {
         Recording {
             channels,
             nodes,
+            elements: nodes,
             pulleys,
             idlers,
             ..Default::default()
         }
+    }
+
+    /// The same with `elements` elements (an open belt: one fewer than the nodes).
+    pub fn with_elements(mut self, elements: usize) -> Self {
+        self.elements = elements;
+        self
     }
 
     /// Number of recorded instants.
@@ -183,7 +193,7 @@ impl Recording {
         let c = &self.channels;
         [
             1,
-            if c.tension { n } else { 0 },
+            if c.tension { self.elements } else { 0 },
             if c.node_position { 2 * n } else { 0 },
             if c.node_velocity { 2 * n } else { 0 },
             2 * p,
@@ -307,7 +317,8 @@ impl Recording {
     /// Move the recorded buffers out (trimmed to their length), leaving an empty recording
     /// of the same sizes: the bindings hand them to NumPy without a copy.
     pub fn take(&mut self) -> Recording {
-        let empty = Recording::new(self.channels, self.nodes, self.pulleys, self.idlers);
+        let empty = Recording::new(self.channels, self.nodes, self.pulleys, self.idlers)
+            .with_elements(self.elements);
         let mut out = std::mem::replace(self, empty);
         for buf in out.buffers_mut() {
             buf.shrink_to_fit();

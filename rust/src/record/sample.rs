@@ -23,10 +23,20 @@ impl Simulation {
             if m.gravity > 0.0 {
                 e.gravity += s.node_mass[i] * m.gravity * s.position[i].y;
             }
+            if i >= m.elements {
+                continue; // an open belt's last entry is no element
+            }
             let j = (i + 1) % n;
             let stretch = (s.position[j] - s.position[i]).norm() - m.rest_length[i];
             if !(m.tension_only && stretch < 0.0) {
                 e.strain += 0.5 * m.axial_stiffness[i] * stretch * stretch;
+            }
+        }
+        // The potential of the end pulls (an open belt), −F·x, with gravity's (exact for a
+        // constant pull).
+        if let Some(ends) = m.ends {
+            for (i, end) in [(0, ends.start), (n - 1, ends.end)] {
+                e.gravity -= end.pull(s.time).dot(&s.position[i]);
             }
         }
         if m.has_stage(Stage::Bending) {
@@ -68,7 +78,7 @@ impl Simulation {
             |d: Rigid| s.rigid_speed(d) + half * sc.rigid_force(m, d) / self.inertia.rigid(m, d);
         r.time.push(s.time);
         if r.channels.tension {
-            r.tension.extend_from_slice(&sc.tension);
+            r.tension.extend_from_slice(&sc.tension[..r.elements]);
         }
         if r.channels.node_position {
             for x in &s.position {

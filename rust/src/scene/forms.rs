@@ -5,7 +5,7 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, Table, Wrap};
+use super::{BrakeSpec, CreepFriction, DriveSpec, Formulation, FrictionModel, Table, Wrap};
 use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -99,6 +99,18 @@ impl Named for Wrap {
 }
 named_serde!(Wrap);
 
+impl Named for super::EndHold {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (super::EndHold::Anchor, "anchor"),
+        (super::EndHold::Force, "force"),
+        (super::EndHold::Mass, "mass"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name("hold of a belt end", name, &["anchor", "force", "mass"])
+    }
+}
+named_serde!(super::EndHold);
+
 impl Named for StartShape {
     const NAMES: &'static [(Self, &'static str)] = &[
         (StartShape::Harrison, "harrison"),
@@ -120,18 +132,18 @@ pub enum FrictionKind {
     /// `"stick_force"`: stick-force friction (thesis eq. 4.76–4.94).
     #[default]
     StickForce,
+    /// `"creep"`: Kubas's creep-rate friction (eq. 12–19), `crate::friction::creep`.
+    Creep,
 }
 
 impl Named for FrictionKind {
     const NAMES: &'static [(Self, &'static str)] = &[
         (FrictionKind::None, "none"),
         (FrictionKind::StickForce, "stick_force"),
+        (FrictionKind::Creep, "creep"),
     ];
     fn unknown(name: &str) -> String {
-        if name == "creep" {
-            return "the creep friction model is not implemented yet (available: \"none\", \"stick_force\")".into();
-        }
-        unknown_name("friction model", name, &["none", "stick_force"])
+        unknown_name("friction model", name, &["none", "stick_force", "creep"])
     }
 }
 named_serde!(FrictionKind);
@@ -147,6 +159,14 @@ pub struct FrictionKeys {
     pub static_coefficient: f64,
     /// Kinetic coefficient µk, dimensionless. `None`: equal to `static`. Default `None`.
     pub kinetic: Option<f64>,
+    /// Creep model only: Δv, the relative speed up to which the contact creeps (µ rises
+    /// to µs; µk from 1.5·Δv), m/s, > 0. `None`:
+    /// [`crate::friction::creep::DEFAULT_TRANSITION_SPEED`] (10⁻³ m/s). Default `None`.
+    pub transition_speed: Option<f64>,
+    /// Creep model only: Δmax, the creep displacement at which the creep part of µ
+    /// reaches µs, m, > 0. `None`: [`crate::friction::creep::DEFAULT_CREEP_LIMIT`]
+    /// (10⁻⁴ m). Default `None`.
+    pub creep_limit: Option<f64>,
 }
 
 impl Default for FrictionKeys {
@@ -155,6 +175,8 @@ impl Default for FrictionKeys {
             model: FrictionKind::StickForce,
             static_coefficient: 0.0,
             kinetic: None,
+            transition_speed: None,
+            creep_limit: None,
         }
     }
 }
@@ -162,6 +184,23 @@ impl Default for FrictionKeys {
 impl TryFrom<FrictionKeys> for FrictionModel {
     type Error = String;
     fn try_from(k: FrictionKeys) -> Result<Self, String> {
+        if k.model != FrictionKind::Creep {
+            // Creep parameters with another model would be silently ignored.
+            let creep = [
+                ("transition_speed", k.transition_speed),
+                ("creep_limit", k.creep_limit),
+            ];
+            if let Some((key, Some(v))) = creep.iter().find(|(_, v)| v.is_some()) {
+                return Err(rule(
+                    &format!(".{key}"),
+                    v,
+                    format!(
+                        "belongs to the creep friction model only (model = \"creep\"; here \"{}\")",
+                        k.model.scene_name()
+                    ),
+                ));
+            }
+        }
         match k.model {
             FrictionKind::None => {
                 // Coefficients with no friction model would be silently ignored.
@@ -175,7 +214,7 @@ impl TryFrom<FrictionKeys> for FrictionModel {
                     return Err(rule(
                         &format!(".{key}"),
                         v,
-                        "friction model \"none\" takes no coefficients (use \"stick_force\")",
+                        "friction model \"none\" takes no coefficients (use \"stick_force\" or \"creep\")",
                     ));
                 }
                 Ok(FrictionModel::None)
@@ -184,6 +223,16 @@ impl TryFrom<FrictionKeys> for FrictionModel {
                 static_coefficient: k.static_coefficient,
                 kinetic_coefficient: k.kinetic.unwrap_or(k.static_coefficient),
             }),
+            FrictionKind::Creep => Ok(FrictionModel::Creep(CreepFriction {
+                static_coefficient: k.static_coefficient,
+                kinetic_coefficient: k.kinetic.unwrap_or(k.static_coefficient),
+                transition_speed: k
+                    .transition_speed
+                    .unwrap_or(crate::friction::creep::DEFAULT_TRANSITION_SPEED),
+                creep_limit: k
+                    .creep_limit
+                    .unwrap_or(crate::friction::creep::DEFAULT_CREEP_LIMIT),
+            })),
         }
     }
 }
@@ -202,6 +251,14 @@ pub(crate) mod friction {
                 model: FrictionKind::StickForce,
                 static_coefficient,
                 kinetic: Some(kinetic_coefficient),
+                ..FrictionKeys::default()
+            }),
+            FrictionModel::Creep(c) => Some(FrictionKeys {
+                model: FrictionKind::Creep,
+                static_coefficient: c.static_coefficient,
+                kinetic: Some(c.kinetic_coefficient),
+                transition_speed: Some(c.transition_speed),
+                creep_limit: Some(c.creep_limit),
             }),
         };
         keys.serialize(s)

@@ -13,12 +13,16 @@
 //! `docs/scene-format.md`.
 
 use crate::error::{BeltError, BeltResult};
+pub use crate::friction::creep::CreepFriction;
 use crate::start_curve::StartCurve;
 use serde::{Deserialize, Serialize};
 
+mod ends;
 mod forms;
 pub mod read;
 mod validate;
+
+pub use ends::{BeltEndSpec, EndHold};
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
@@ -65,10 +69,14 @@ pub struct BeltParams {
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
-    /// Number of elements (= number of nodes, the loop is closed), 3 to [`MAX_ELEMENTS`].
+    /// Number of elements (= number of nodes for a closed loop, one fewer than the nodes
+    /// for an open belt), 3 to [`MAX_ELEMENTS`].
     /// `None`: the fewest
     /// elements whose unstretched length is at most the arc of `max_element_angle` on the
-    /// smallest pulley (thesis §6.1). Default `None`.
+    /// smallest pulley (thesis §6.1), and, while `max_element_angle` is at its default, on
+    /// every pulley with friction at most the arc that keeps the node-discrete
+    /// Euler–Eytelwein ratio over its wrap within 0.5 % (`model::FRICTION_RATIO_ERROR`,
+    /// `docs/belt-drives.md`). Default `None`.
     pub elements: Option<usize>,
     /// Largest arc angle an element may span on the smallest pulley when `elements` is
     /// `None`, rad. Default π/6 (30°, as in the thesis).
@@ -83,6 +91,19 @@ pub struct BeltParams {
     /// for pre-strained elastic drive belts (the belt-drive literature's benchmarks are
     /// pre-strained 5.26 %). Default 0.1 (10 %).
     pub max_placement_strain: f64,
+    /// The belt's first end, for an open belt (give `start` and `end` together): the
+    /// belt runs from it round the pulleys in order to `end` (`docs/open-belts.md`).
+    /// `None`: a closed loop. Default `None`.
+    pub start: Option<BeltEndSpec>,
+    /// The belt's last end, for an open belt (with `start`). Default `None`.
+    pub end: Option<BeltEndSpec>,
+}
+
+impl BeltParams {
+    /// True for an open belt (both ends given; validation refuses one alone).
+    pub fn is_open(&self) -> bool {
+        self.start.is_some() && self.end.is_some()
+    }
 }
 
 impl Default for BeltParams {
@@ -98,6 +119,8 @@ impl Default for BeltParams {
             max_element_angle: std::f64::consts::PI / 6.0,
             tension_only: false,
             max_placement_strain: DEFAULT_MAX_PLACEMENT_STRAIN,
+            start: None,
+            end: None,
         }
     }
 }
@@ -164,6 +187,10 @@ pub enum FrictionModel {
         /// Kinetic (dynamic) coefficient µk, dimensionless, ≥ 0.
         kinetic_coefficient: f64,
     },
+    /// Kubas's (2014) creep-rate friction (eq. 12–19): µ as a function of the creep
+    /// displacement Δ (memory per contact point, in the state) and the relative speed,
+    /// `crate::friction::creep` and `docs/belt-drives.md`.
+    Creep(CreepFriction),
 }
 
 impl FrictionModel {
@@ -174,7 +201,24 @@ impl FrictionModel {
             FrictionModel::StickForce {
                 static_coefficient, ..
             } => static_coefficient == 0.0,
+            FrictionModel::Creep(c) => c.static_coefficient == 0.0,
         }
+    }
+
+    /// The static coefficient µs (0 without friction).
+    pub fn static_coefficient(&self) -> f64 {
+        match *self {
+            FrictionModel::None => 0.0,
+            FrictionModel::StickForce {
+                static_coefficient, ..
+            } => static_coefficient,
+            FrictionModel::Creep(c) => c.static_coefficient,
+        }
+    }
+
+    /// True for the creep model (it keeps a memory per contact point in the state).
+    pub fn is_creep(&self) -> bool {
+        matches!(self, FrictionModel::Creep(c) if c.static_coefficient > 0.0)
     }
 }
 

@@ -161,7 +161,7 @@ pub(crate) fn check_finite(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
-fn check_positive(field: &str, value: f64) -> BeltResult<()> {
+pub(crate) fn check_positive(field: &str, value: f64) -> BeltResult<()> {
     check_finite(field, value)?;
     if value > 0.0 {
         Ok(())
@@ -215,10 +215,67 @@ fn check_friction(field: &str, model: &FrictionModel) -> BeltResult<()> {
             ));
         }
     }
+    if let FrictionModel::Creep(c) = model {
+        // Named by the scene keys (`friction.static`, ..., `friction.creep_limit`).
+        check_non_negative(&format!("{field}.static"), c.static_coefficient)?;
+        check_non_negative(&format!("{field}.kinetic"), c.kinetic_coefficient)?;
+        if c.kinetic_coefficient > c.static_coefficient {
+            return Err(BeltError::invalid(
+                format!("{field}.kinetic"),
+                c.kinetic_coefficient,
+                format!(
+                    "must not exceed the static coefficient {}",
+                    c.static_coefficient
+                ),
+            ));
+        }
+        check_positive(&format!("{field}.transition_speed"), c.transition_speed)?;
+        check_positive(&format!("{field}.creep_limit"), c.creep_limit)?;
+    }
     Ok(())
 }
 
 impl Scene {
+    /// The rules of an open belt: `belt.start` and `belt.end` together, each valid, and no
+    /// idlers or loads (their tracking follows a closed loop).
+    fn validate_open_ends(&self) -> BeltResult<()> {
+        let b = &self.belt;
+        match (&b.start, &b.end) {
+            (None, None) => return Ok(()),
+            (Some(_), None) | (None, Some(_)) => {
+                let (given, missing) = if b.start.is_some() {
+                    ("belt.start", "belt.end")
+                } else {
+                    ("belt.end", "belt.start")
+                };
+                return Err(BeltError::invalid(
+                    missing,
+                    "missing",
+                    format!("an open belt needs both ends: {given} is given (give {missing} too, or neither for a closed loop)"),
+                ));
+            }
+            (Some(start), Some(end)) => {
+                start.validate("belt.start")?;
+                end.validate("belt.end")?;
+            }
+        }
+        if !self.idlers.is_empty() {
+            return Err(BeltError::invalid(
+                "idlers",
+                format!("{} idler(s)", self.idlers.len()),
+                "idlers are not available on an open belt (belt.start/belt.end) yet: their contact tracking follows a closed loop",
+            ));
+        }
+        if !self.loads.is_empty() {
+            return Err(BeltError::invalid(
+                "loads",
+                format!("{} load(s)", self.loads.len()),
+                "material loads are not available on an open belt (belt.start/belt.end) yet: their zones follow a closed loop",
+            ));
+        }
+        Ok(())
+    }
+
     /// Check every parameter on its own and the pairwise rules that need no geometry
     /// (overlaps). Path-dependent rules (closure, belt length, element length) are checked
     /// when the path is built in [`crate::model::Model::compile`].
@@ -271,7 +328,16 @@ impl Scene {
             ));
         }
 
-        if self.pulleys.len() < 2 {
+        self.validate_open_ends()?;
+        if self.belt.is_open() {
+            if self.pulleys.is_empty() {
+                return Err(BeltError::invalid(
+                    "pulleys",
+                    "0 pulley(s)",
+                    "an open belt path needs at least 1 pulley",
+                ));
+            }
+        } else if self.pulleys.len() < 2 {
             return Err(BeltError::invalid(
                 "pulleys",
                 format!("{} pulley(s)", self.pulleys.len()),
@@ -302,12 +368,7 @@ impl Scene {
             check_friction(&format!("{f}.friction"), &p.friction)?;
             if p.contact_stiffness == 0.0 && !p.friction.is_none() {
                 // Friction needs a normal force: it would be silently ignored.
-                let mu = match p.friction {
-                    FrictionModel::StickForce {
-                        static_coefficient, ..
-                    } => static_coefficient,
-                    FrictionModel::None => 0.0,
-                };
+                let mu = p.friction.static_coefficient();
                 return Err(BeltError::invalid(
                     format!("{f}.friction.static"),
                     mu,
@@ -370,6 +431,14 @@ impl Scene {
             check_positive(&format!("{f}.contact_stiffness"), d.contact_stiffness)?;
             check_contact_damping(&f, d.contact_damping, d.contact_damping_ratio)?;
             check_friction(&format!("{f}.friction"), &d.friction)?;
+            if let FrictionModel::Creep(_) = d.friction {
+                // It would be silently ignored.
+                return Err(BeltError::invalid(
+                    format!("{f}.friction.model"),
+                    "\"creep\"",
+                    "the creep friction model acts on pulleys only (its memory is per belt point and pulley); an idler takes \"stick_force\"",
+                ));
+            }
             check_non_negative(&format!("{f}.resistance"), d.resistance)?;
             check_non_negative(&format!("{f}.rotating_mass"), d.rotating_mass)?;
         }

@@ -81,3 +81,18 @@ pub fn bending_angle(x: &[V2], j: usize) -> f64 {
     let b = x[next(j, n)] - x[j];
     a.perp(&b).atan2(a.dot(&b))
 }
+
+/// [`bending`] for an open belt: springs at the interior nodes 1..n−2 only (an end has
+/// one element, so no angle), summed in a plain loop (open belts are short).
+pub fn bending_open(x: &[V2], k_theta: &[f64], force: &mut [V2]) {
+    let n = x.len();
+    for j in 1..n.saturating_sub(1) {
+        let (a, b) = (x[j] - x[j - 1], x[j + 1] - x[j]);
+        let moment = k_theta[j] * angle(a.perp(&b), a.dot(&b));
+        let ga = perp(a) * (moment / a.norm_squared());
+        let gb = perp(b) * (moment / b.norm_squared());
+        force[j - 1] -= ga;
+        force[j] += ga + gb;
+        force[j + 1] -= gb;
+    }
+}

@@ -8,7 +8,7 @@
 mod bending;
 pub mod stage;
 
-pub use bending::{bending, bending_angle};
+pub use bending::{bending, bending_angle, bending_open};
 
 use nalgebra::Vector2;
 use std::cell::Cell;
@@ -219,6 +219,9 @@ pub struct AxialBelt<'a> {
     pub uniform: Option<Uniform>,
     /// Kelvin-Voigt elements (with dashpots) or elastic ones.
     pub damped: bool,
+    /// An open belt: the last entry (node n−1 back to node 0) is no element; the pass
+    /// skips it (one branch per pass) and its tension is 0.
+    pub open: bool,
     /// A slack element carries nothing.
     pub tension_only: bool,
     /// Gravitational acceleration, m/s² (0 without a gravity stage).
@@ -326,12 +329,13 @@ fn axial_elements<const TENSION_ONLY: bool, I: Iterator<Item = (V2, V2)>>(
     tension: &mut impl Tensions,
     force: &[Cell<V2>],
 ) -> I {
+    let (gravity, open) = (belt.gravity, belt.open);
     if belt.damped {
         let law = damped_elements::<TENSION_ONLY>;
-        axial_sweep(nodes, params, belt.gravity, law, tension, force)
+        axial_sweep(nodes, params, (gravity, open), law, tension, force)
     } else {
         let law = |d, _, k, _, l0| elastic_elements::<TENSION_ONLY>(d, k, l0);
-        axial_sweep(nodes, params, belt.gravity, law, tension, force)
+        axial_sweep(nodes, params, (gravity, open), law, tension, force)
     }
 }
 
@@ -339,12 +343,13 @@ fn axial_elements<const TENSION_ONLY: bool, I: Iterator<Item = (V2, V2)>>(
 /// each, paired in one SSE2 instruction) and then nodes e and e+1, which need the force of
 /// element e−1, carried from the previous iteration. `law` computes two elements from
 /// their vectors, relative velocities, stiffnesses, damping and rest lengths; the first,
-/// the last and an odd one out are computed alone (in both lanes).
+/// the last and an odd one out are computed alone (in both lanes). With `open`, the
+/// closing entry is no element (an open belt).
 #[inline(always)]
 fn axial_sweep<I: Iterator<Item = (V2, V2)>>(
     mut nodes: I,
     (k, c, l0, mass): (impl PerItem, impl PerItem, impl PerItem, impl PerItem),
-    gravity: f64,
+    (gravity, open): (f64, bool),
     law: impl Fn([V2; 2], [V2; 2], Pair, Pair, Pair) -> (Pair, [V2; 2]),
     tension: &mut impl Tensions,
     force: &[Cell<V2>],
@@ -387,8 +392,12 @@ fn axial_sweep<I: Iterator<Item = (V2, V2)>>(
         f.set(node_force(prev, fe, mass.at(e), gravity));
         (xa, va, prev) = (xb, vb, fe);
     }
-    // The closing element n−1 runs from node n−1 (now in xa) to node 0.
-    let (t_last, fe_last) = alone(x0 - xa, v0 - va, k.at(n - 1), c.at(n - 1), l0.at(n - 1));
+    // The closing element n−1 runs from node n−1 (now in xa) to node 0 (none if open).
+    let (t_last, fe_last) = if open {
+        (0.0, V2::zeros())
+    } else {
+        alone(x0 - xa, v0 - va, k.at(n - 1), c.at(n - 1), l0.at(n - 1))
+    };
     tension.set(n - 1, t_last);
     force[n - 1].set(node_force(prev, fe_last, mass.at(n - 1), gravity));
     force[0].set(first_node_force(fe_first, fe_last, mass.at(0), gravity));
@@ -471,6 +480,7 @@ fn axial_with(
         mass,
         uniform: None,
         damped,
+        open: false,
         tension_only,
         gravity,
     };

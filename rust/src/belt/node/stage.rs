@@ -17,8 +17,16 @@ pub fn axial(cx: &mut StageContext<'_>) {
     );
 }
 
-/// Rotational bending springs (thesis eq. 4.47, signs re-derived).
+/// Rotational bending springs (thesis eq. 4.47, signs re-derived); interior nodes only on
+/// an open belt.
 pub fn bending(cx: &mut StageContext<'_>) {
+    if cx.model.ends.is_some() {
+        return super::bending_open(
+            &cx.state.position,
+            &cx.model.bending_stiffness,
+            &mut cx.scratch.force,
+        );
+    }
     super::bending(
         &cx.state.position,
         &cx.model.bending_stiffness,
