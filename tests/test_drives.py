@@ -46,6 +46,13 @@ def loop(head_drive, tail_drive=None, tail_viscous=0.0, elements=120, axial_stif
     )
 
 
+def element_average(values, scene, sim, speed=2.0):
+    """Moving average over one element of travel at ``speed`` (m/s): removes the node
+    belt's polygon ripple (docs/drives.md) from a per-step series."""
+    n = int(round(scene.belt.length / scene.belt.elements / speed / sim.dt))
+    return np.convolve(values, np.ones(n) / n, "valid")
+
+
 def relaxed_run(scene, duration, **kw):
     sim = beltrs.Simulation(scene)
     sim.stabilise()
@@ -53,27 +60,59 @@ def relaxed_run(scene, duration, **kw):
 
 
 # --- the PI controller on an elastic belt --------------------------------------------------
+def rigid_pi_error(t, curve, j, kp, ki, b):
+    """Speed error w_ref - w (rad/s, r = 1) of PI control of a rigid inertia j against a
+    viscous load b*w: j e'' + (kp + b) e' + ki e = j w_ref'' + b w_ref' (from
+    j w' = kp e + ki int(e) - b w), integrated with RK4 on the record grid."""
+    dt = t[1] - t[0]
+
+    def rhs(tt, y):
+        h = 1e-6
+        a = curve.acceleration_at(tt)
+        jerk = (curve.acceleration_at(tt + h) - curve.acceleration_at(tt - h)) / (2 * h)
+        return np.array([y[1], (j * jerk + b * a - (kp + b) * y[1] - ki * y[0]) / j])
+
+    y, out = np.zeros(2), np.empty(len(t))
+    for i, tt in enumerate(t):
+        out[i] = y[0]
+        k1 = rhs(tt, y)
+        k2 = rhs(tt + dt / 2, y + dt / 2 * k1)
+        k3 = rhs(tt + dt / 2, y + dt / 2 * k2)
+        k4 = rhs(tt + dt, y + dt * k3)
+        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return out
+
+
 def test_pi_tracks_a_starting_curve_on_the_belt():
-    """A 2 s Harrison start to 2 m/s against a 100 N*m*s/rad load. Rigid estimate of the
-    lag: jerk/w_c^2 + load step/(K_i) ... the largest term is the jerk's,
-    (pi^2/2) v0/T^2 / w_c^2 = 2.5e-2 m/s at w_c = 10 rad/s, 1.2 % of v0; the belt's
-    elasticity adds its ringing. Stated error: within 2.5 % of v0 during the ramp, 0.2 %
-    from 1 s after it, and zero mean error in steady running (the integral)."""
+    """A 2 s Harrison start to 2 m/s against a 100 N*m*s/rad load on the tail, default
+    gains (J = the loop's rigid-body inertia, w_c = 10 rad/s).
+
+    The pulley speed carries the node belt's polygon ripple (twice the element passing
+    frequency, 18 Hz here, +-1-2 % of the speed; docs/drives.md): averaged over one element
+    of travel, the tracking error is the rigid loop's, e.g. 1.15 % of v0 at the ramp's
+    largest jerk. Stated: the averaged error within 0.3 % of v0 of the rigid PI model's
+    throughout, within 0.2 % of v0 from 1 s after the ramp, mean zero in steady running
+    (the integral), and the steady torque carries the load."""
     curve = StartCurve(shape="harrison", speed=2.0, ramp=2.0, start=0.1)
     scene = loop(Drive(start_curve=curve, controller=SpeedController()), tail_viscous=100.0)
-    sim, res = relaxed_run(scene, 6.0, record_interval=0.01)
+    sim, res = relaxed_run(scene, 6.0, record_every=1)
     assert "speed_control" in sim.stages and "speed_drives" not in sim.stages
-    v = res.pulley_speed[:, 0] * RADIUS
-    ref = curve.speed_at(res.time)
-    err = ref - v
-    assert np.max(np.abs(err)) < 0.025 * 2.0, np.max(np.abs(err))
-    late = res.time > curve.end + 1.0
-    assert np.max(np.abs(err[late])) < 0.002 * 2.0
+    control = sim.model.controllers[0]
+    err = curve.speed_at(res.time) - res.pulley_speed[:, 0] * RADIUS
+    model = rigid_pi_error(res.time, curve, control["inertia"], control["proportional_gain"],
+                           control["integral_gain"], 100.0)
+    averaged, rigid = element_average(err, scene, sim), element_average(model, scene, sim)
+    t = element_average(res.time, scene, sim)
+    assert np.max(np.abs(rigid)) == pytest.approx(0.0115 * 2.0, rel=0.1)
+    assert np.max(np.abs(averaged - rigid)) < 0.003 * 2.0, np.max(np.abs(averaged - rigid))
+    late = t > curve.end + 1.0
+    assert np.max(np.abs(averaged[late])) < 0.002 * 2.0
+    assert abs(np.mean(averaged[t > curve.end + 2.0])) < 1e-4
     steady = res.time > curve.end + 2.0
-    assert abs(np.mean(err[steady])) < 1e-4
-    # The torque in steady running carries the load: b*w at the tail's speed.
+    # The steady torque carries the load b*w, plus the dampers' share of the ripple (< 8 %,
+    # as in the DOL test).
     torque = np.mean(res.drive_torque[steady, 0])
-    assert torque == pytest.approx(100.0 * 2.0, rel=0.03)
+    assert 100.0 * 2.0 < torque < 1.08 * 100.0 * 2.0
 
 
 def test_pi_never_exceeds_its_limit_and_falls_behind_while_limited():
@@ -89,7 +128,8 @@ def test_pi_never_exceeds_its_limit_and_falls_behind_while_limited():
     # While limited the error grows (the belt cannot keep up).
     k = np.flatnonzero(limited & (res.time < curve.end))
     assert err[k[-1]] > err[k[0]] + 0.5
-    assert abs(err[-1]) < 0.002 * 2.0
+    # Caught up afterwards (averaged over an element of travel: the polygon ripple).
+    assert np.max(np.abs(element_average(err, scene, sim)[-1000:])) < 0.002 * 2.0
 
 
 def test_default_gains_use_the_reflected_inertia():
@@ -118,7 +158,7 @@ def test_master_slave_shares_at_the_set_ratio():
     np.testing.assert_allclose(tt[moving] / th[moving], 0.5, rtol=1e-12)
     steady = res.time > curve.end + 2.0
     total = np.mean(th[steady] + tt[steady])
-    assert total == pytest.approx(150.0 * 2.0, rel=0.03)
+    assert 150.0 * 2.0 < total < 1.08 * 150.0 * 2.0  # the load, plus the ripple's damping
     assert res.pulley_speed[-1, 0] * RADIUS == pytest.approx(2.0, rel=2e-3)
 
 
@@ -149,15 +189,22 @@ def test_dol_motor_with_coupling_starts_the_belt_and_records_power():
     motor = Motor(rated_power=2e3, rated_speed=150.0, synchronous_speed=157.08, gear_ratio=75.0,
                   rotor_inertia=0.01, coupling=FluidCoupling(), start=0.2)
     scene = loop(Drive(motor=motor, flywheel=0.02), tail_viscous=100.0)
-    sim, res = relaxed_run(scene, 8.0, record_interval=0.01)
+    sim, res = relaxed_run(scene, 8.0, record_every=1)
     assert "motors" in sim.stages
+    # Before switch-on only the coupling's drag on the resting rotor acts (the relaxed
+    # belt creeps by micrometres per second).
     before = res.time < 0.2
-    assert np.all(res.drive_torque[before, 0] == 0.0)
+    assert np.max(np.abs(res.drive_torque[before, 0])) < 1e-5
     w = res.pulley_speed[-1, 0]
     assert 0.9 * 157.08 / 75 < w < 157.08 / 75
     power = res.drive_power[:, 0]
     np.testing.assert_array_equal(power, res.drive_torque[:, 0] * res.pulley_speed[:, 0])
-    assert power[-1] == pytest.approx(100.0 * w * w, rel=0.05)
+    # In steady running the drive delivers the load's power b*w_tail^2 plus what the belt
+    # and contact dampers take from the node belt's polygon ripple (about 5 % here, 18 Hz
+    # at +-0.6 % of the speed; the same in the PI runs).
+    late = res.time > 6.0
+    load = np.mean(100.0 * res.pulley_speed[late, 1] ** 2)
+    assert load < np.mean(power[late]) < 1.08 * load
 
 
 def test_scene_file_and_checkpoint_round_trip(tmp_path):
@@ -207,7 +254,8 @@ CURVE = StartCurve(speed=2.0, ramp=1.0)
          r"controller\.droop = 1\.5: must be below 1"),
         (Drive(start_curve=CURVE, controller=SpeedController(torque_time_constant=5.0)),
          r"controller\.torque_time_constant = 5: must be below K_p/K_i"),
-        (Drive(follow=TorqueFollow(master="haed")), r"follow\.master = \"haed\": no pulley has this name, did you mean \"head\""),
+        (Drive(follow=TorqueFollow(master="haed")),
+         r"follow\.master = \"haed\": no pulley has this name, did you mean \"head\""),
         (Drive(follow=TorqueFollow(master="head", ratio=0.0)), r"follow\.ratio = 0: must be finite and > 0"),
         (Drive(motor=Motor(rated_power=1e3, rated_speed=150.0, synchronous_speed=140.0)),
          r"motor\.synchronous_speed = 140: must exceed rated_speed"),
@@ -232,14 +280,14 @@ def test_bad_input_from_dicts_toml_and_method_arguments(tmp_path):
     scene = loop(Drive(start_curve=CURVE, controller=SpeedController()))
     d = scene.to_dict()
     d["pulleys"][0]["drive"]["controller"]["bandwith"] = 5.0
-    with pytest.raises(SceneError, match=r"pulleys\[0\]\.drive\.controller\.bandwith.*did you mean \"bandwidth\""):
+    with pytest.raises(SceneError, match=r"pulleys\[0\]\.drive\.controller\.bandwith.*did you mean .bandwidth."):
         Scene.from_dict(d)
     d = scene.to_dict()
     d["pulleys"][0]["drive"]["controller"]["bandwidth"] = "fast"
     with pytest.raises(SceneError, match=r"bandwidth"):
         Scene.from_dict(d)
     text = scene.to_toml().replace("[pulleys.drive.controller]", "[pulleys.drive.controller]\ndamping = 1.0")
-    with pytest.raises(SceneError, match=r"controller\.damping.*did you mean \"damping_ratio\""):
+    with pytest.raises(SceneError, match=r"controller\.damping.*did you mean .damping_ratio."):
         Scene.from_toml(text)
     text = scene.to_toml().replace("[pulleys.drive.controller]", "[pulleys.drive.motor]\nrated_power = 1.0\n"
                                    "[pulleys.drive.controller]")
@@ -248,7 +296,7 @@ def test_bad_input_from_dicts_toml_and_method_arguments(tmp_path):
     sim = beltrs.Simulation(loop(None))
     with pytest.raises(SceneError, match=r"controller\.integral_gain = -1: must be ≥ 0"):
         sim.set_drive("head", Drive(start_curve=CURVE, controller=SpeedController(integral_gain=-1.0)))
-    with pytest.raises(SceneError, match=r"controller = 'pi'"):
+    with pytest.raises(SceneError, match=r"controller = .pi."):
         sim.set_drive("head", Drive(start_curve=CURVE, controller="pi"))
 
 

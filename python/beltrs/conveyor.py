@@ -872,7 +872,8 @@ def _read(table: Any) -> Conveyor:
             if "start_curve" in dk:
                 dk["start_curve"] = _read_dataclass(StartCurve, dk["start_curve"], f"conveyor.drives[{i}].start_curve")
             if "controller" in dk:
-                dk["controller"] = _read_dataclass(SpeedController, dk["controller"], f"conveyor.drives[{i}].controller")
+                where = f"conveyor.drives[{i}].controller"
+                dk["controller"] = _read_dataclass(SpeedController, dk["controller"], where)
             drives.append(DriveSpec(**dk))
         kw["drives"] = drives
     for key in ("profile", "curve_radii", "lagging"):

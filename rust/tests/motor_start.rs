@@ -80,7 +80,12 @@ fn kloss_curve_through_rated_and_breakdown_points() {
     else {
         unreachable!()
     };
-    close("breakdown", curve.torque(ns * (1.0 - sb)), 2.5 * tr, 1e-9 * tr);
+    close(
+        "breakdown",
+        curve.torque(ns * (1.0 - sb)),
+        2.5 * tr,
+        1e-9 * tr,
+    );
     for ds in [-1e-3, 1e-3] {
         assert!(curve.torque(ns * (1.0 - sb - ds)) < 2.5 * tr);
     }

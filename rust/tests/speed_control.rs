@@ -120,7 +120,12 @@ fn default_gains_are_critically_damped_on_the_inertia() {
 #[test]
 fn pi_follows_a_ramp_with_the_closed_form_error() {
     let (coarse, peak) = max_deviation(1e-4);
-    close("peak error", peak, 2.0 / (std::f64::consts::E * OMEGA_C), 2e-4);
+    close(
+        "peak error",
+        peak,
+        2.0 / (std::f64::consts::E * OMEGA_C),
+        2e-4,
+    );
     assert!(coarse <= 2.0 * 1e-4 / 2.0, "deviation {coarse:e} rad/s");
     let (fine, _) = max_deviation(0.5e-4);
     let order = (coarse / fine).log2();
@@ -145,7 +150,11 @@ fn pi_saturates_at_its_torque_limit_and_does_not_wind_up() {
     let torque: Vec<f64> = (0..r.time.len()).map(|k| r.drive_torque[2 * k]).collect();
     assert!(torque.iter().all(|t| t.abs() <= 60.0), "over the limit");
     let limited = torque.iter().filter(|&&t| t == 60.0).count();
-    assert!(limited as f64 * dt > 0.5, "limited for {} s only", limited as f64 * dt);
+    assert!(
+        limited as f64 * dt > 0.5,
+        "limited for {} s only",
+        limited as f64 * dt
+    );
     // Error slope in the middle of the ramp (limited there).
     let at = |t: f64| ((t / dt).round()) as usize;
     let (k0, k1) = (at(0.5), at(0.9));
@@ -177,11 +186,17 @@ fn stiff_gains_set_the_stable_step() {
     let c = scene.pulleys[0].drive.as_mut().unwrap();
     c.controller.as_mut().unwrap().proportional_gain = Some(1e8);
     let sim = Simulation::new(&scene).unwrap();
-    assert!(sim.model.dt_cause.contains("speed controller"), "{}", sim.model.dt_cause);
+    assert!(
+        sim.model.dt_cause.contains("speed controller"),
+        "{}",
+        sim.model.dt_cause
+    );
     close("limit", sim.model.dt_limit, INERTIA / 1e8, 1e-12);
     scene.solver.time_step = Some(1e-4);
     match Simulation::new(&scene) {
-        Err(BeltError::TimeStepTooLarge { cause, .. }) => assert!(cause.contains("speed controller")),
+        Err(BeltError::TimeStepTooLarge { cause, .. }) => {
+            assert!(cause.contains("speed controller"))
+        }
         other => panic!("{other:?}"),
     }
 }
@@ -286,17 +301,36 @@ fn followers_apply_their_share_of_the_master_torque() {
     for k in 0..r.time.len() {
         let master = 100.0 * r.time[k].min(1.0);
         close("master", r.drive_torque[2 * k], master, 1e-9);
-        close("follower", r.drive_torque[2 * k + 1], (0.5 * master).min(40.0), 1e-9);
+        close(
+            "follower",
+            r.drive_torque[2 * k + 1],
+            (0.5 * master).min(40.0),
+            1e-9,
+        );
     }
     let refused = |scene: &Scene, field: &str| match Simulation::new(scene) {
         Err(BeltError::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
         other => panic!("{field}: {other:?}"),
     };
     let mut s = scene.clone();
-    s.pulleys[1].drive.as_mut().unwrap().follow.as_mut().unwrap().master = "haed".into();
+    s.pulleys[1]
+        .drive
+        .as_mut()
+        .unwrap()
+        .follow
+        .as_mut()
+        .unwrap()
+        .master = "haed".into();
     refused(&s, "pulleys[1].drive.follow.master");
     let mut s = scene.clone();
-    s.pulleys[1].drive.as_mut().unwrap().follow.as_mut().unwrap().ratio = -1.0;
+    s.pulleys[1]
+        .drive
+        .as_mut()
+        .unwrap()
+        .follow
+        .as_mut()
+        .unwrap()
+        .ratio = -1.0;
     refused(&s, "pulleys[1].drive.follow.ratio");
     let mut s = scene.clone();
     s.pulleys[0].drive = Some(DriveSpec {
@@ -321,7 +355,14 @@ fn followers_apply_their_share_of_the_master_torque() {
     refused(&s, "pulleys[0].drive.controller");
     // Droop without its torque, and the torque without droop.
     let mut s = rigid_scene(f64::INFINITY, 1e-4);
-    s.pulleys[0].drive.as_mut().unwrap().controller.as_mut().unwrap().droop = 0.02;
+    s.pulleys[0]
+        .drive
+        .as_mut()
+        .unwrap()
+        .controller
+        .as_mut()
+        .unwrap()
+        .droop = 0.02;
     refused(&s, "pulleys[0].drive.controller.rated_torque");
 }
 
