@@ -63,7 +63,7 @@ impl DriveSpec {
                 return Err(BeltError::invalid(
                     format!("{f}.max_torque"),
                     self.max_torque,
-                    format!("limits a speed-controlled drive or a torque follower only: give {f}.start_curve or {f}.follow, or leave max_torque out"),
+                    format!("limits a speed-controlled drive only (or a torque follower): give {f}.start_curve or {f}.follow, or leave max_torque out"),
                 ));
             }
             return Ok(());
