@@ -28,6 +28,7 @@ from .scene import (
     StartCurve,
     Takeup,
 )
+from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 
@@ -44,11 +45,13 @@ __all__ = [
     "DivergenceError",
     "DriveDirectionWarning",
     "Drive",
+    "FluidCoupling",
     "Friction",
     "Idler",
     "IdlerContactWarning",
     "Load",
     "Model",
+    "Motor",
     "NotRelaxedWarning",
     "Pulley",
     "Recording",
@@ -57,9 +60,11 @@ __all__ = [
     "SceneError",
     "Simulation",
     "Solver",
+    "SpeedController",
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "TorqueFollow",
     "UndampedContactWarning",
     "__version__",
     "analysis",

@@ -24,10 +24,12 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates); since version 5, the friction
-//! memory (the creep displacement of every belt point on every pulley, empty without creep
-//! friction). Strings, byte strings and arrays are a `u64` length followed by the items.
-//! Version 4 files (no friction memory: no creep friction existed) still read.
+//! element, end element, start and end material coordinates), the memory of each
+//! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
+//! within version 4, so a file that ends before it reads as zero memory), and since version
+//! 5 the friction memory (the creep displacement of every belt point on every pulley,
+//! empty without creep friction; a version 4 file reads with an empty one). Strings, byte
+//! strings and arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -41,6 +43,7 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
+use crate::drives::controller::DriveMemory;
 use crate::error::{BeltError, BeltResult};
 use crate::loads::LoadEdges;
 use crate::model::Model;
@@ -212,6 +215,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        ("drive memories", s.drive_memory.len(), p),
         (
             "friction memory values",
             s.creep.len(),
@@ -569,6 +573,14 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    // Added within version 4: files written before it end here (read as zero memory).
+    w.u64(s.drive_memory.len() as u64);
+    for c in &s.drive_memory {
+        w.f64(c.integral);
+        w.f64(c.torque);
+        w.f64(c.motor_speed);
+    }
+    // Version 5: the friction memory.
     w.f64s(&s.creep);
 }
 
@@ -614,6 +626,21 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    // Controller memory (added within version 4; absent from older files: zero).
+    let drive_memory = if r.pos < r.bytes.len() {
+        let n = r.len("drive memories", 24)?;
+        (0..n)
+            .map(|_| {
+                Ok(DriveMemory {
+                    integral: r.f64("drive memory")?,
+                    torque: r.f64("drive memory")?,
+                    motor_speed: r.f64("drive memory")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?
+    } else {
+        vec![DriveMemory::default(); pulley_omega.len()]
+    };
     let creep = if r.version >= 5 {
         r.f64s("friction memory")?
     } else {
@@ -634,6 +661,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        drive_memory,
         creep,
     })
 }
