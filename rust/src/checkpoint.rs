@@ -42,6 +42,10 @@
 //! Writes are atomic ([`write_atomic`]): the bytes go to a temporary file in the same
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
+//!
+//! Length: a little over the ~600-line guide, because the format (header, payload order,
+//! versions, reader checks) is documented and checked in one place, next to the code that
+//! writes and reads it.
 
 use crate::drives::controller::DriveMemory;
 use crate::error::{BeltError, BeltResult};

@@ -11,6 +11,11 @@
 //! unknown keys, and [`read`] turns any plain-value tree into a scene with messages naming
 //! the full path, the value and the rule. Adding a field: see "Adding a scene field" in
 //! `docs/scene-format.md`.
+//!
+//! Length: this file holds one type per scene table with every field's unit, default and
+//! rule documented where it is declared, which puts it a little over the ~600-line guide;
+//! the ends of an open belt (`ends.rs`), the serde forms (`forms.rs`), the reader
+//! (`read.rs`) and the rules (`validate.rs`) live apart.
 
 use crate::drives::controller::SpeedController;
 use crate::drives::motor::Motor;
