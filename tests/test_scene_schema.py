@@ -175,6 +175,6 @@ def test_a_checkpoint_of_an_older_format_is_refused_naming_its_version(tmp_path)
         data[8:12] = old.to_bytes(4, "little")
         path.write_bytes(bytes(data))
         with pytest.raises(
-            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 4 \(.*older"
+            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 5 \(.*older"
         ):
             beltrs.Simulation.load_checkpoint(path)

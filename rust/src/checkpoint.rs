@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; older versions are refused, naming their version)
+//! # Format (version 5; versions before 4 are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (4) |
+//! | 8..12 | format version, `u32` (5) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -24,13 +24,15 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates). Strings, byte strings and
+//! element, end element, start and end material coordinates), and (from version 5) the
+//! speed at which each pulley's deceleration brake began its ramp. Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
 //! schema's serde form, so that a new scene field needs no change here. Versions 1 to 3 are
-//! refused with their version number (re-run from the scene file).
+//! refused with their version number (re-run from the scene file). Version 5 added the
+//! brake ramps; a version 4 file reads with none begun.
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -52,7 +54,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -210,6 +212,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        ("brake ramps", s.brake_ramp.len(), p),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -562,6 +565,7 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    w.f64s(&s.brake_ramp);
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -606,6 +610,11 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    let brake_ramp = if r.version >= 5 {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     Ok(State {
         time,
         step,
@@ -621,6 +630,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        brake_ramp,
     })
 }
 
