@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
                     StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
@@ -25,6 +25,7 @@ TABLES = {
     "drive": Drive,
     "start_curve": StartCurve,
     "brake": Brake,
+    "holdback": Holdback,
     "idler": Idler,
     "load": Load,
     "solver": Solver,

@@ -287,8 +287,8 @@ class StopSpec:
         time: time the drives lose power, s (simulated time of the run), finite.
         brake: ``"head"`` or ``"tail"``: the drum with the brake. Default None (coast).
         brake_torque: braking torque at the drum, N*m, > 0. Default None: with a
-            ``deceleration``, 2 x M_eq x deceleration x drum radius (a factor 2 over the
-            rigid-belt torque, :meth:`Conveyor.moving_mass`); needed without one.
+            ``deceleration``, :meth:`Conveyor.brake_torque_for` (1.5 x (M_eq x a + the
+            material's pull on the slope) x drum radius); needed without one.
         deceleration: belt deceleration target at the drum, m/s^2, > 0. Default None (a
             torque brake).
         brake_delay: time from the power failure to the brake's application, s, >= 0.
@@ -744,13 +744,29 @@ class Conveyor:
         if stop is not None and stop.brake == name:
             torque = stop.brake_torque
             if torque is None:
-                torque = 2.0 * self.moving_mass() * float(stop.deceleration) * self.radius
+                torque = self.brake_torque_for(float(stop.deceleration))
             changes["brake"] = Brake(torque=float(torque), deceleration=stop.deceleration,
                                      applied=float(stop.time) + float(stop.brake_delay), rise=float(stop.brake_rise))
         if self.holdback == name:
             changes["holdback"] = Holdback(forward="cw")  # the builder's drums turn clockwise
         if changes:
             pulleys[name] = replace(p, **changes)
+
+    def material_lift(self) -> float:
+        """Pull of the material along the belt on the loaded length, N: m'_L · g · ΔH, ΔH the
+        rise from the loading to the discharge point (negative on a decline): what a
+        holdback or a brake must hold at rest."""
+        prof = self.carry_profile
+        end = prof.length if self.discharge is None else float(self.discharge)
+        rise = float(prof.point(end)[0][1]) - float(prof.point(float(self.loading))[0][1])
+        return self.material_mass * self.gravity * rise
+
+    def brake_torque_for(self, deceleration: float) -> float:
+        """Brake torque at a drum for a stop at ``deceleration`` (m/s²), N·m: 1.5 × (M_eq · a
+        + |m'_L · g · ΔH|) × drum radius, the rigid belt's braking force plus the material's
+        pull on the slope (:meth:`material_lift`), with 50 % margin."""
+        a = check("deceleration", deceleration, positive=True, unit="m/s^2")
+        return 1.5 * (self.moving_mass() * a + abs(self.material_lift())) * self.radius
 
     def _curve(self, d: DriveSpec) -> StartCurve:
         curve = d.start_curve or StartCurve(shape="harrison", speed=self.speed, ramp=10.0)

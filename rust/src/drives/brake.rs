@@ -21,7 +21,9 @@
 //!   would also swallow every elastic rebound and stop early.
 //!
 //! [`PulleyModel::hold`] combines a pulley's holders: a powered speed-controlled drive
-//! holds alone; otherwise its brake and its holdback (`super::holdback`) act together.
+//! holds alone (with the holdback's range added while it holds the pulley at rest, e.g.
+//! before its start); otherwise its brake and its holdback (`super::holdback`) act
+//! together.
 
 use crate::friction::Prescribed;
 use crate::model::PulleyModel;
@@ -104,7 +106,11 @@ impl PulleyModel {
         ramp: f64,
     ) -> Option<(Prescribed, Holder)> {
         if let Some(h) = self.speed_hold(time, drift) {
-            return Some((h, Holder::Drive));
+            // A holdback helps a drive that holds its pulley at rest (before its start).
+            return match &self.holdback {
+                Some(hb) if h.omega == 0.0 => Some((hb.combine(Some(h)), Holder::Drive)),
+                _ => Some((h, Holder::Drive)),
+            };
         }
         let brake = self
             .brake
