@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 5; versions before 4 are refused, naming their version)
+//! # Format (version 4; older versions are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,7 +9,7 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (5) |
+//! | 8..12 | format version, `u32` (4) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
@@ -24,15 +24,17 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates), and (from version 5) the
-//! speed at which each pulley's deceleration brake began its ramp. Strings, byte strings and
+//! element, end element, start and end material coordinates), the memory of each
+//! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
+//! within version 4, so a file that ends before it reads as zero memory), and the speed at
+//! which each pulley's deceleration brake began its ramp (added within version 4 after the
+//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
 //! schema's serde form, so that a new scene field needs no change here. Versions 1 to 3 are
-//! refused with their version number (re-run from the scene file). Version 5 added the
-//! brake ramps; a version 4 file reads with none begun.
+//! refused with their version number (re-run from the scene file).
 //!
 //! Nothing else influences the next step: the stepper's scratch buffers are rebuilt on
 //! every force evaluation. The recording is not part of a checkpoint.
@@ -41,6 +43,7 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
+use crate::drives::controller::DriveMemory;
 use crate::error::{BeltError, BeltResult};
 use crate::loads::LoadEdges;
 use crate::model::Model;
@@ -54,7 +57,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 4;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -212,6 +215,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        ("drive memories", s.drive_memory.len(), p),
         ("brake ramps", s.brake_ramp.len(), p),
     ];
     for (what, have, want) in sizes {
@@ -565,6 +569,14 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    // Added within version 4: files written before it end here (read as zero memory).
+    w.u64(s.drive_memory.len() as u64);
+    for c in &s.drive_memory {
+        w.f64(c.integral);
+        w.f64(c.torque);
+        w.f64(c.motor_speed);
+    }
+    // Added within version 4 after the drive memory: older files end before it.
     w.f64s(&s.brake_ramp);
 }
 
@@ -610,7 +622,23 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
-    let brake_ramp = if r.version >= 5 {
+    // Controller memory (added within version 4; absent from older files: zero).
+    let drive_memory = if r.pos < r.bytes.len() {
+        let n = r.len("drive memories", 24)?;
+        (0..n)
+            .map(|_| {
+                Ok(DriveMemory {
+                    integral: r.f64("drive memory")?,
+                    torque: r.f64("drive memory")?,
+                    motor_speed: r.f64("drive memory")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?
+    } else {
+        vec![DriveMemory::default(); pulley_omega.len()]
+    };
+    // Added within version 4 after the drive memory (absent from older files: none begun).
+    let brake_ramp = if r.pos < r.bytes.len() {
         r.f64s("brake ramps")?
     } else {
         vec![0.0; pulley_omega.len()]
@@ -630,6 +658,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        drive_memory,
         brake_ramp,
     })
 }
