@@ -26,10 +26,13 @@
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
 //! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a file that ends before it reads as zero memory), and since version
-//! 5 the friction memory (the creep displacement of every belt point on every pulley,
-//! empty without creep friction; a version 4 file reads with an empty one). Strings, byte
-//! strings and arrays are a `u64` length followed by the items.
+//! within version 4, so a file that ends before it reads as zero memory), the speed at
+//! which each pulley's deceleration brake began its ramp (added within version 4 after the
+//! drive memory, so a version 4 file that ends before it reads as no ramp begun), and since
+//! version 5 the friction memory (the creep displacement of every belt point on every pulley,
+//! empty without creep friction; a version 4 file reads with an empty one). In version 5 the
+//! drive memory, the brake ramps and the friction memory are always present, in that order.
+//! Strings, byte strings and arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -220,6 +223,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
+        ("brake ramps", s.brake_ramp.len(), p),
         (
             "friction memory values",
             s.creep.len(),
@@ -584,6 +588,8 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(c.torque);
         w.f64(c.motor_speed);
     }
+    // Added within version 4 after the drive memory: older files end before it.
+    w.f64s(&s.brake_ramp);
     // Version 5: the friction memory.
     w.f64s(&s.creep);
 }
@@ -645,6 +651,13 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         vec![DriveMemory::default(); pulley_omega.len()]
     };
+    // Added within version 4 after the drive memory (absent from older version 4 files:
+    // none begun); always present from version 5.
+    let brake_ramp = if r.version >= 5 || r.pos < r.bytes.len() {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     let creep = if r.version >= 5 {
         r.f64s("friction memory")?
     } else {
@@ -666,6 +679,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         node_mass,
         load_edges,
         drive_memory,
+        brake_ramp,
         creep,
     })
 }

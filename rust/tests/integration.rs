@@ -21,3 +21,4 @@ mod run_contract;
 mod scene_schema;
 mod speed_control;
 mod speed_drive;
+mod stops;

@@ -39,13 +39,15 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         return;
     }
     let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
+    let kick = cx.dt;
     let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
-        let prescribed = if drives {
-            p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, drift))
+        let hold = if drives {
+            p.hold(s.time, drift, kick, s.pulley_omega[j], s.brake_ramp[j])
         } else {
             None
         };
+        let prescribed = hold.map(|h| h.0);
         let (static_coefficient, kinetic_coefficient) = match p.friction {
             FrictionModel::StickForce {
                 static_coefficient,
@@ -56,7 +58,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
                     creep_on_pulley(
                         &law,
                         j,
-                        prescribed.is_some(),
+                        creep_held(p, hold.map(|h| h.1), s.time),
                         friction_dt,
                         m,
                         s,
@@ -92,6 +94,24 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         );
         sc.pulley_force[j] += out.force;
         sc.friction[j] = out;
+    }
+}
+
+/// Whether a pulley with creep friction is held rigidly this step: by a speed-controlled
+/// drive, or by an applied brake. A holdback alone is one-way (the pulley turns freely
+/// forwards), so it does not make the pulley rigid for the creep law; the holdback's own
+/// stage still stops reverse rotation.
+fn creep_held(
+    p: &crate::model::PulleyModel,
+    holder: Option<crate::drives::brake::Holder>,
+    time: f64,
+) -> bool {
+    match holder {
+        None => false,
+        Some(crate::drives::brake::Holder::Drive) => true,
+        Some(crate::drives::brake::Holder::Brake) => {
+            p.brake.as_ref().is_some_and(|b| !b.released(time))
+        }
     }
 }
 

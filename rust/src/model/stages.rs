@@ -42,8 +42,12 @@ pub enum Stage {
     /// within the motor's limit (`docs/drives.md`). Solved with the belt friction when the
     /// pulley has friction; this stage takes the result (or solves a pulley without).
     SpeedDrives,
-    /// Coulomb brakes with holding at rest.
+    /// Brakes (torque or deceleration target) with holding at rest, together with the
+    /// holdback of the same pulley (`crate::drives::brake`).
     Brakes,
+    /// Holdbacks of pulleys without a brake: one-way clutches against reverse rotation
+    /// (`crate::drives::holdback`).
+    Holdbacks,
     /// The pulls on the ends of an open belt (`belt.start`/`belt.end` with `hold =
     /// "force"`), before the contacts and friction see the node forces.
     EndPulls,
@@ -71,6 +75,7 @@ impl Stage {
             Stage::IdlerFriction => "idler_friction",
             Stage::SpeedDrives => "speed_drives",
             Stage::Brakes => "brakes",
+            Stage::Holdbacks => "holdbacks",
             Stage::EndPulls => "end_pulls",
             Stage::EndAnchors => "end_anchors",
         }
@@ -140,6 +145,12 @@ pub(super) fn select(
     }
     if pulleys.iter().any(|p| p.brake.is_some()) {
         stages.push(Stage::Brakes);
+    }
+    if pulleys
+        .iter()
+        .any(|p| p.brake.is_none() && p.holdback.is_some())
+    {
+        stages.push(Stage::Holdbacks);
     }
     if ends.iter().any(|e| matches!(e, EndModel::Anchor(_))) {
         stages.push(Stage::EndAnchors);
