@@ -17,11 +17,13 @@ use crate::start_curve::StartCurve;
 use serde::{Deserialize, Serialize};
 
 mod forms;
+mod initial;
 pub mod read;
 mod validate;
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
+pub use initial::InitialState;
 pub(crate) use validate::check_finite;
 
 /// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
@@ -559,6 +561,9 @@ pub struct Scene {
     /// How the scene asks to be run and recorded (not used by the engine itself: the command
     /// line and `beltrs.Scene.recording` do). Checked with the scene.
     pub recording: RecordingParams,
+    /// The design state to start from ([`InitialState`]); `None`: the belt placed
+    /// unstretched on the pulleys' path, at rest, to be relaxed. Default `None`.
+    pub initial: Option<InitialState>,
 }
 
 impl Default for Scene {
@@ -571,6 +576,7 @@ impl Default for Scene {
             gravity: 9.81,
             solver: SolverParams::default(),
             recording: RecordingParams::default(),
+            initial: None,
         }
     }
 }
