@@ -112,19 +112,27 @@ def test_builder_running_start_agrees_with_statics_within_3_percent():
 
 
 def test_builder_rest_start_holds_still():
-    # At rest from the standstill tensions on a loaded incline, drive holding: nothing
-    # moves and the tensions stay within 1 % of the design (a 0.5 s settle).
+    # At rest from the standstill tensions on a loaded incline with a vertical curve, the
+    # drive holding: the drums hold the belt (no creep along the path), and in 0.5 s the
+    # belt only settles into its sag between the rolls (the placement runs straight from
+    # roll to roll): the mean tension moves by under 1 %, the takeup by millimetres.
     c = Conveyor(profile=[(0, 0), (60, 3), (120, 3)], curve_radii=[400.0], belt="EP630/4", capacity=150.0,
-                 speed=1.5, drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=1.5,
-                                                                                      ramp=3.0, start=10.0))])
+                 speed=1.5, takeup=TakeupSpec("tail", tension=20e3),
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=1.5, ramp=3.0,
+                                                                          start=10.0))])
     s = c.scene()
     assert [p.name for p in s.pulleys] == ["tail", "head"]  # no guides: placed along the profile
     sim = beltrs.Simulation(s)
     t0 = sim.tensions().copy()
-    sim.run(0.5, record_interval=0.05, tension=False, node_position=False, node_velocity=False)
-    t1 = sim.tensions()
-    assert np.max(np.abs(t1 - t0)) < 0.02 * t0.max()
-    assert abs(sim.takeup_travel[0]) < 2e-3
+    # the standstill tensions: the takeup's plus the lifts (DIN 22101 with f = 0)
+    rest = beltrs.statics.tensions(design_start.at_rest(c.loop()), c.belt_mass, statics.DIN22101(0.0))
+    assert t0.max() == pytest.approx(rest.max, rel=0.01)
+    res = sim.run(0.5, record_interval=0.05, tension=True, node_position=False, node_velocity=False)
+    assert abs(res.tension[-1].mean() / t0.mean() - 1) < 0.01
+    head = s.pulley_index("head")
+    assert np.abs(res.pulley_speed[:, head]).max() < 1e-6  # rad/s: held by its drive
+    assert np.abs(res.pulley_speed[:, 1 - head]).max() < 0.05  # the tail turns as the takeup settles
+    assert abs(res.takeup_travel[-1, 0]) < 5e-3
 
 
 # --- rigid-body limit ---------------------------------------------------------------------
@@ -166,38 +174,38 @@ def test_slow_start_of_a_stiff_belt_approaches_f_equals_m_a():
 def test_takeup_travel_of_a_loaded_start_is_half_the_elastic_stretch():
     """During a loaded start the gravity takeup takes up what the belt stretches: its travel
     is half the change of the belt's elastic length ∫ΔT/EA ds (two strands on the takeup
-    pulley), from the recorded tensions at every sample, and, at steady running, from the
-    static calculation (running against standstill tensions).
+    pulley), at every sample, through the takeup's bounce (an 8 t counterweight on a soft
+    EP belt: it overshoots to several times its steady travel).
 
-    From the design state at rest, 1 s of settling (the spans drop into their sag between
-    the rolls; the drive holds) before a 4 s Harrison start, both measured from there. A
-    60 kN takeup keeps the spans' sag, which shortens as the tension rises, below 3 % of
-    the stretch (its share: EA·q²·a²/(12·T³), 2.7 % on the loaded carry, 1.4 % on the
-    return)."""
-    settle, ramp = 1.0, 4.0
-    c = short(takeup=TakeupSpec("tail", tension=60e3),
-              drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=ramp,
-                                                                       start=settle))])
+    100 m, EP630/4 (EA = 6.3 MN), 400 t/h at 2 m/s, a 40 kN takeup; from the design state at
+    rest, 0.5 s of settling (the spans sink into their sag) before a 2 s Harrison start,
+    both travel and stretch counted from there. Tolerance 5 % of the peak travel: the rest
+    is geometry, not elasticity: the spans' sag shortens as the tension rises (its share of
+    the length change, EA·q²·a²/(12·T³), is 0.9 % on the loaded carry at 40 kN; 7 % at
+    20 kN, which is why the takeup is heavy here) and the belt's transverse motion; measured
+    1.7 % at the peak and 2.3 % at worst over the samples beyond a fifth of the peak."""
+    settle, ramp, length = 0.5, 2.0, 100.0
+    c = Conveyor(profile=[(0, 0), (length, 0)], belt="EP630/4", capacity=400.0, speed=2.0,
+                 takeup=TakeupSpec("tail", tension=40e3),
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=ramp,
+                                                                          start=settle))])
     scene = c.scene()
     sim = beltrs.Simulation(scene)
-    res = sim.run(settle + ramp + 3.0, record_interval=0.02, tension=True, node_position=False,
+    res = sim.run(settle + ramp + 1.0, record_interval=0.02, tension=True, node_position=False,
                   node_velocity=False)
     ea = scene.belt.axial_stiffness
-    l0 = sim.rest_length
     k0 = int(np.searchsorted(res.time, settle - 1e-9))
-    stretch = (res.tension - res.tension[k0]) @ l0 / ea  # m, change of elastic length
+    stretch = (res.tension - res.tension[k0]) @ sim.rest_length / ea  # m, change of elastic length
     tail = scene.pulley_index("tail")
     # along the pull, away from the conveyor: it takes up the stretch
     travel = res.takeup_travel[:, tail] - res.takeup_travel[k0, tail]
+    peak = float(np.abs(travel).max())
     k = int(np.argmax(np.abs(travel)))
-    assert travel[k] > 0
+    assert travel[k] > 0.05  # m: a real stretch, far above the settling (0.3 mm)
     assert travel[k] == pytest.approx(stretch[k] / 2, rel=0.05)
-    late = res.time >= res.time[-1] - 1.0
-    run = c.statics()
-    rest = statics.tensions(design_start.at_rest(c.loop()), c.belt_mass, statics.DIN22101(0.0))
-    d = np.linspace(0, run.length, 20001)
-    predicted = np.trapezoid(run.along(d) - rest.along(d), d) / ea / 2
-    assert travel[late].mean() == pytest.approx(predicted, rel=0.05)
+    big = np.abs(travel) > 0.2 * peak
+    assert big.sum() > 20
+    assert np.max(np.abs(travel[big] - stretch[big] / 2)) < 0.05 * peak
 
 
 # --- bad input ------------------------------------------------------------------------------

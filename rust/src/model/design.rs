@@ -324,17 +324,6 @@ pub(super) fn place(scene: &Scene, init: &InitialState, path: &BeltPath) -> Belt
         let s = s.rem_euclid(length);
         wraps.iter().find(|w| s >= w.from && s <= w.to)
     };
-    // Chord of the element whose middle is at `s`, for elements of rest length `l0`.
-    let chord = |s: f64, l0: f64| -> f64 {
-        let stretched = l0 * (1.0 + strain(s));
-        match wrap_at(s) {
-            Some(w) => {
-                let normal = 2.0 * init.tension_at(s, length) * (0.5 * stretched / w.radius).sin();
-                stretched / (1.0 - normal / w.stiffness / w.radius)
-            }
-            None => stretched,
-        }
-    };
     for w in &wraps {
         let t = init.tension_at(0.5 * (w.from + w.to), length);
         let l0 = rest / n as f64;
@@ -348,67 +337,92 @@ pub(super) fn place(scene: &Scene, init: &InitialState, path: &BeltPath) -> Belt
         }
     }
     let point = |s: f64| path.point(s);
-    let walk = |l0: f64, mut out: Option<&mut Vec<f64>>| -> BeltResult<f64> {
+    // Walk n elements from node 0: element e gets the chord l⁰·(1 + T/EA) at its middle
+    // plus `extra[e]` (what sinking its nodes into a drum will take off it).
+    let walk = |l0: f64, extra: &[f64], mut out: Option<&mut Vec<f64>>| -> BeltResult<f64> {
         let mut s = 0.0;
-        for _ in 0..n {
+        for e in extra {
             if let Some(o) = out.as_deref_mut() {
                 o.push(s);
             }
-            s = crate::geometry::next_at_chord_on(point, s, chord(s + 0.5 * l0, l0));
+            let chord = l0 * (1.0 + strain(s + 0.5 * l0)) + e;
+            s = crate::geometry::next_at_chord_on(point, s, chord);
             crate::interrupt::check(64)?;
         }
         Ok(s - length)
     };
-    // Secant on l⁰ for the closure: the walk is nearly linear in it (slope ≈ n).
-    let (mut a, mut b) = (rest / n as f64, rest / n as f64 * (1.0 - 1e-4));
-    let (mut fa, mut fb) = (walk(a, None)?, walk(b, None)?);
-    let tolerance = 1e-12 * length;
-    for _ in 0..40 {
-        if fb.abs() <= tolerance || fb == fa {
+    // l⁰ that closes the loop: secant (the walk is nearly linear in it, slope ≈ n).
+    let close = |extra: &[f64]| -> BeltResult<f64> {
+        let (mut a, mut b) = (rest / n as f64, rest / n as f64 * (1.0 - 1e-4));
+        let (mut fa, mut fb) = (walk(a, extra, None)?, walk(b, extra, None)?);
+        let tolerance = 1e-12 * length;
+        for _ in 0..40 {
+            if fb.abs() <= tolerance || fb == fa {
+                break;
+            }
+            let c = b - fb * (b - a) / (fb - fa);
+            (a, fa) = (b, fb);
+            b = c;
+            fb = walk(b, extra, None)?;
+            if (b - a).abs() <= 1e-14 * b {
+                break; // at the walk's rounding noise
+            }
+        }
+        if fb.is_nan() || fb.abs() > 1e-9 * length {
+            return Err(BeltError::invalid(
+                "initial",
+                format!("a closure gap of {fb:e} m"),
+                "the design placement did not close round the path (the tension table may change too fast for the elements)",
+            ));
+        }
+        Ok(b)
+    };
+    // Sink each node on a contact wrap by its penetration N/k, N the resultant of the design
+    // tensions of its two elements along the inward normal.
+    let sink = |nominal: &[V2]| -> Vec<V2> {
+        let mut positions = nominal.to_vec();
+        for i in 0..n {
+            let x = nominal[i];
+            let (s, _) = crate::loads::project_on_path(path, x);
+            let Some(w) = wrap_at(s) else { continue };
+            let (prev, next) = (nominal[(i + n - 1) % n], nominal[(i + 1) % n]);
+            let mid = |p: V2, q: V2| crate::loads::project_on_path(path, 0.5 * (p + q)).0;
+            let t_prev = init.tension_at(mid(prev, x), length);
+            let t_next = init.tension_at(mid(x, next), length);
+            let force = (next - x).normalize() * t_next + (prev - x).normalize() * t_prev;
+            let inward = (w.center - x).normalize();
+            positions[i] = x + inward * (force.dot(&inward).max(0.0) / w.stiffness);
+        }
+        positions
+    };
+    // Sinking shortens the chords on a wrap (by about δ/r) and, less, those running onto
+    // it: walk again with each element lengthened by what the last sinking took off it
+    // (a fixed point; the second correction is below 10⁻³ of the first).
+    let mut extra = vec![0.0; n];
+    let mut l0 = close(&extra)?;
+    let mut at = Vec::with_capacity(n);
+    let mut positions = Vec::new();
+    for pass in 0..3 {
+        at.clear();
+        walk(l0, &extra, Some(&mut at))?;
+        let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
+        positions = if wraps.is_empty() { nominal } else { sink(&nominal) };
+        if wraps.is_empty() || pass == 2 {
             break;
         }
-        let c = b - fb * (b - a) / (fb - fa);
-        (a, fa) = (b, fb);
-        b = c;
-        fb = walk(b, None)?;
-        if (b - a).abs() <= 1e-14 * b {
-            break; // at the walk's rounding noise
+        for e in 0..n {
+            let chord = (positions[(e + 1) % n] - positions[e]).norm();
+            let target = l0 * (1.0 + strain(at[e] + 0.5 * l0));
+            extra[e] += target - chord;
         }
+        l0 = close(&extra)?;
     }
-    if fb.is_nan() || fb.abs() > 1e-9 * length {
-        return Err(BeltError::invalid(
-            "initial",
-            format!("a closure gap of {fb:e} m"),
-            "the design placement did not close round the path (the tension table may change too fast for the elements)",
-        ));
-    }
-    let l0 = b;
     if l0 > min_radius {
         return Err(BeltError::invalid(
             "belt.elements",
             n,
             format!("elements of {l0:.6} m are longer than the smallest pulley radius {min_radius} m can hold (limit: one radius, a 60° chord); use more elements"),
         ));
-    }
-    let mut at = Vec::with_capacity(n);
-    walk(l0, Some(&mut at))?;
-    let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
-    // Sink each node on a contact wrap by its penetration N/k, N the resultant of the design
-    // tensions of its two elements along the inward normal.
-    let mut positions = nominal.clone();
-    for i in 0..n {
-        let Some(w) = wrap_at(at[i]) else { continue };
-        let (prev, next) = (nominal[(i + n - 1) % n], nominal[(i + 1) % n]);
-        let x = nominal[i];
-        let mid = |p: V2, q: V2| {
-            crate::loads::project_on_path(path, 0.5 * (p + q)).0
-        };
-        let t_prev = init.tension_at(mid(prev, x), length);
-        let t_next = init.tension_at(mid(x, next), length);
-        let force = (next - x).normalize() * t_next + (prev - x).normalize() * t_prev;
-        let inward = (w.center - x).normalize();
-        let sink = force.dot(&inward).max(0.0) / w.stiffness;
-        positions[i] = x + inward * sink;
     }
     let speed = init.speed;
     // along the placed belt: the tangent of the placement curve (central difference)
