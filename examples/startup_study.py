@@ -84,8 +84,11 @@ def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float) -> 
     return c.scene()
 
 
-def study(cfg: dict, out=sys.stdout) -> list[dict]:
-    cases = curves(cfg)
+def study(cfg: dict, out=sys.stdout, part: tuple[int, int] = (1, 1)) -> list[dict]:
+    """Run the study's cases (``part`` = (k, n): only every n-th case from the k-th, to
+    spread the full study over n processes; the table rows keep the study's order)."""
+    k, n = part
+    cases = curves(cfg)[k - 1::n]
     tension, power, din = design(cfg)
     print(f"# Start-up study: {cfg['length']:g} m, {cfg['belt']}, {cfg['capacity']:g} t/h at {cfg['speed']:g} m/s; "
           f"takeup {tension / 1e3:g} kN per strand, motor {power / 1e3:g} kW; DIN 22101 T1 = "
@@ -93,6 +96,11 @@ def study(cfg: dict, out=sys.stdout) -> list[dict]:
 
     rows = []
     lead = cfg["lead"]
+    print(f"Start: the design state at rest (no relaxation), {lead:g} s of settling with the drive holding, then "
+          "the curve (times from its start).\n", file=out)
+    print("| curve | ramp, s | pre-start, s | peak T, kN | at, s | peak T < 2 Hz, kN | T steady, kN | "
+          "a drive, m/s² | a tail, m/s² | takeup, m | P peak, kW | P end, kW | wall, s |", file=out)
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|", file=out, flush=True)
     for curve in cases:
         curve = replace(curve, start=lead)  # a short settle at rest first (the spans' sag)
         scene = build(cfg, curve, tension, power)
@@ -120,15 +128,12 @@ def study(cfg: dict, out=sys.stdout) -> list[dict]:
             steady=smooth[last].mean(), a_drive=a_drive.max(), a_tail=a_tail.max(),
             takeup=travel.max(), p_peak=p.max(), p_end=p[last].mean(), wall=wall,
             t1_din=din.drive("head").tight))
-    print(f"Start: the design state at rest (no relaxation), {lead:g} s of settling with the drive holding, then "
-          f"the curve (times from its start); {sum(w['wall'] for w in rows):.0f} s of wall in all.\n", file=out)
-    print("| curve | ramp, s | pre-start, s | peak T, kN | at, s | peak T < 2 Hz, kN | T steady, kN | "
-          "a drive, m/s² | a tail, m/s² | takeup, m | P peak, kW | P end, kW | wall, s |", file=out)
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|", file=out)
-    for w in rows:
+        w = rows[-1]
         print(f"| {w['shape']} | {w['ramp']:g} | {w['prestart']:g} | {w['peak'] / 1e3:.1f} | {w['at']:.2f} | "
               f"{w['peak2'] / 1e3:.1f} | {w['steady'] / 1e3:.1f} | {w['a_drive']:.3f} | {w['a_tail']:.3f} | "
-              f"{w['takeup']:.3f} | {w['p_peak'] / 1e3:.1f} | {w['p_end'] / 1e3:.1f} | {w['wall']:.1f} |", file=out)
+              f"{w['takeup']:.3f} | {w['p_peak'] / 1e3:.1f} | {w['p_end'] / 1e3:.1f} | {w['wall']:.1f} |", file=out,
+              flush=True)
+    print(f"\n{len(rows)} starts, {sum(w['wall'] for w in rows):.0f} s of wall in all.", file=out)
     return rows
 
 
@@ -136,12 +141,20 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="a 40 m conveyor with short ramps (seconds)")
     parser.add_argument("--write-scene", metavar="PATH", help="write the full study's first scene to PATH and stop")
+    parser.add_argument("--part", metavar="K/N", default="1/1",
+                        help="run every N-th case from the K-th (spread the study over N processes)")
     args = parser.parse_args(argv)
+    try:
+        k, n = (int(v) for v in args.part.split("/"))
+        if not 1 <= k <= n:
+            raise ValueError
+    except ValueError:
+        parser.error(f"--part {args.part!r}: expected K/N with 1 <= K <= N, e.g. 1/2")
     if args.write_scene:
         tension, power, _ = design(FULL)
         build(FULL, curves(FULL)[0], tension, power).save(args.write_scene)
         return 0
-    study(QUICK if args.quick else FULL)
+    study(QUICK if args.quick else FULL, part=(k, n))
     return 0
 
 

@@ -138,35 +138,43 @@ def test_builder_rest_start_holds_still():
 # --- rigid-body limit ---------------------------------------------------------------------
 def test_slow_start_of_a_stiff_belt_approaches_f_equals_m_a():
     """Thesis §1.4 (CEMA): a rigid belt accelerated at a needs F = M_eq·a over its running
-    resistance. A 30 m conveyor with a belt 100 x stiffer than ST1250 (EA = 8.3 GN: its
-    longitudinal wave crosses the loop in 4 ms) started along a 6 s Harrison curve: the
-    drive force minus the steady running force, fitted against the curve's acceleration,
-    gives the moving mass reduced to the belt line (belt, rolls I/r², drums I/r²), which
-    the scene fixes independently."""
-    stiff = BeltClass("stiff", strength=1.25e6, carcass_mass=9.74, carcass_thickness=0.0045,
-                      modulus=8.33e9, top_cover=0.006, bottom_cover=0.005, cord_diameter=0.0045)
-    ramp, v = 6.0, 2.0
-    c = Conveyor(profile=[(0, 0), (30, 0)], belt=stiff, speed=v, capacity=0.0,
-                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=v, ramp=ramp),
-                                   power=50e3)],
-                 takeup=TakeupSpec("tail", tension=20e3))
+    resistance R. Integrated over a start from rest to v (the work-energy form, which
+    averages out the node polygon's ripple on the drums): drive work W = ½·M_eq·v² + R·x,
+    x the distance run. A 30 m conveyor with a belt 10 x stiffer than ST1250 (EA = 833 MN:
+    its wave crosses the 62 m loop in 14 ms, 1/140 of the 2 s Harrison start) on 1 m
+    drums (elements of 17°, a small ripple); R measured at steady running, from the design
+    state at speed (no start to ring down). M_eq from the scene alone: belt, rolls I/r²,
+    drums I/r². Tolerance 1 %: what a stiff belt still stores and rings with at the end of
+    the ramp; measured −0.3 % (2 s and 4 s ramps alike)."""
+    stiff = BeltClass("ST1250 x 10", strength=1.25e6, carcass_mass=9.74, carcass_thickness=0.0045,
+                      modulus=8.33e8, top_cover=0.006, bottom_cover=0.005, cord_diameter=0.0045)
+    ramp, v = 2.0, 2.0
+
+    def conveyor(start):
+        return Conveyor(profile=[(0, 0), (30, 0)], belt=stiff, speed=v, capacity=0.0, start=start,
+                        pulley_radius=1.0, takeup=TakeupSpec("tail", tension=20e3),
+                        drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=v, ramp=ramp),
+                                          power=50e3)])
+
+    quiet = dict(tension=False, node_position=False, node_velocity=False)
+    running = beltrs.Simulation(conveyor("running").scene())
+    running.run(1.0, record_interval=1.0, **quiet)
+    w0 = running.state()["drive_work"]
+    running.run(3.0, record_interval=1.0, **quiet)
+    resistance = (running.state()["drive_work"] - w0) / (v * 3.0)  # N
+    c = conveyor("rest")
     scene = c.scene()
     sim = beltrs.Simulation(scene)
-    res = sim.run(ramp + 1.0, record_interval=0.01, tension=False, node_position=False, node_velocity=False)
-    head = scene.pulley_index("head")
-    r = c.radius
-    force = -res.drive_torque[:, head] / r  # N along the belt, positive driving
-    curve = scene.pulleys[head].drive.start_curve
-    a = -np.asarray(curve.acceleration_at(res.time))  # belt acceleration, m/s^2
-    running = force[res.time > ramp + 0.5].mean()  # steady running resistance, N
-    mid = (res.time > 0.2 * ramp) & (res.time < 0.8 * ramp)
-    fitted = float(np.sum((force[mid] - running) * a[mid]) / np.sum(a[mid] ** 2))
+    sim.run(ramp, record_interval=ramp, **quiet)
+    work = sim.state()["drive_work"]  # J
+    distance = v * ramp / 2  # m: a Harrison ramp is symmetric
+    fitted = 2 * (work - resistance * distance) / v**2
     belt = float(np.sum(sim.rest_length)) * c.belt_mass
     rolls = sum(d.inertia / d.radius**2 for d in scene.idlers)
     drums = sum((p.inertia + (p.drive.inertia if p.drive else 0.0)) / p.radius**2 for p in scene.pulleys)
     m_eq = belt + rolls + drums
-    # 1 %: the elastic correction is of order (wave transit / ramp)^2 ~ 1e-6; what remains
-    # is the drum ripple of the node polygon averaged over the fit window (measured 0.3 %).
+    assert m_eq == pytest.approx(c.moving_mass(), rel=0.01)  # the builder's own CEMA M_eq
+    assert resistance == pytest.approx(c.statics().effective, rel=0.1)  # DIN's F_U (+5 %: the drum ripple)
     assert fitted == pytest.approx(m_eq, rel=0.01)
 
 

@@ -554,8 +554,8 @@ class Initial(_Table):
     path; ``belt.length`` must be left None), node i sits where the stretched elements
     before it end (deeper on a drum by its contact penetration), every node moves at
     ``speed`` along the path, each pulley the path runs round and each idler with friction
-    turns with the belt; takeups start where the scene puts them. ``recording.stabilise`` must be False (the relaxation would
-    undo the design state).
+    turns with the belt; takeups start where the scene puts them. ``recording.stabilise``
+    must be False (the relaxation would undo the design state).
 
     Attributes:
         tension: design tension, N, finite, >= 0, at each ``distance`` (piecewise linear,

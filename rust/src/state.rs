@@ -86,10 +86,8 @@ impl State {
             pulley_angle: vec![0.0; model.pulleys.len()],
             takeup_travel: vec![0.0; model.pulleys.len()],
             takeup_speed: vec![0.0; model.pulleys.len()],
-            idler_omega: motion.map_or_else(
-                || vec![0.0; model.idlers.len()],
-                |m| m.idler_omega.clone(),
-            ),
+            idler_omega: motion
+                .map_or_else(|| vec![0.0; model.idlers.len()], |m| m.idler_omega.clone()),
             pulley_window: vec![ContactWindow::default(); model.pulleys.len()],
             idler_element,
             drive_work: 0.0,

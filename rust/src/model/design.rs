@@ -187,7 +187,14 @@ fn check_clear(scene: &Scene, path: &BeltPath) -> BeltResult<()> {
         .pulleys
         .iter()
         .enumerate()
-        .map(|(j, p)| (format!("pulleys[{j}]"), p.center, p.radius, p.contact_stiffness))
+        .map(|(j, p)| {
+            (
+                format!("pulleys[{j}]"),
+                p.center,
+                p.radius,
+                p.contact_stiffness,
+            )
+        })
         .chain(scene.idlers.iter().enumerate().map(|(k, d)| {
             (
                 format!("idlers[{k}]"),
@@ -251,9 +258,18 @@ struct ContactWrap {
 }
 
 /// Place the belt of `scene` on `path` at the design state `init` (see the module docs).
-pub(super) fn place(scene: &Scene, init: &InitialState, path: &BeltPath) -> BeltResult<DesignPlacement> {
+pub(super) fn place(
+    scene: &Scene,
+    init: &InitialState,
+    path: &BeltPath,
+) -> BeltResult<DesignPlacement> {
     let length = path.length;
-    if let Some((i, &d)) = init.distance.iter().enumerate().find(|(_, d)| **d >= length) {
+    if let Some((i, &d)) = init
+        .distance
+        .iter()
+        .enumerate()
+        .find(|(_, d)| **d >= length)
+    {
         return Err(BeltError::invalid(
             format!("initial.distance[{i}]"),
             d,
@@ -406,7 +422,11 @@ pub(super) fn place(scene: &Scene, init: &InitialState, path: &BeltPath) -> Belt
         at.clear();
         walk(l0, &extra, Some(&mut at))?;
         let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
-        positions = if wraps.is_empty() { nominal } else { sink(&nominal) };
+        positions = if wraps.is_empty() {
+            nominal
+        } else {
+            sink(&nominal)
+        };
         if wraps.is_empty() || pass == 2 {
             break;
         }
@@ -473,4 +493,116 @@ pub(super) fn place(scene: &Scene, init: &InitialState, path: &BeltPath) -> Belt
             idler_omega,
         },
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::PulleySpec;
+
+    /// Two pulleys of radius 0.5 m, 4 m apart (counter-clockwise wraps), no gravity.
+    fn two_pulleys() -> Scene {
+        let pulley = |x: f64| PulleySpec {
+            center: [x, 0.0],
+            radius: 0.5,
+            contact_stiffness: 1e8,
+            ..Default::default()
+        };
+        Scene {
+            pulleys: vec![pulley(0.0), pulley(4.0)],
+            gravity: 0.0,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn corners_give_the_pulleys_own_path() {
+        // The pulleys' path starts on pulley 0 where the top span arrives (0, 0.5), goes
+        // round it counter-clockwise; the same loop as four 90° corners of radius 0.5.
+        let scene = two_pulleys();
+        let by_pulleys = BeltPath::from_pulleys(&scene.pulleys).unwrap();
+        let corners = [
+            [-0.5, 0.5, 0.5],
+            [-0.5, -0.5, 0.5],
+            [4.5, -0.5, 0.5],
+            [4.5, 0.5, 0.5],
+        ];
+        let by_corners = path_from_corners(&scene, &corners).unwrap();
+        assert!((by_corners.length - by_pulleys.length).abs() < 1e-12);
+        for k in 0..200 {
+            let s = by_pulleys.length * k as f64 / 200.0;
+            assert!(
+                (by_corners.point(s) - by_pulleys.point(s)).norm() < 1e-12,
+                "s = {s}"
+            );
+            let t = tangent(&by_corners, s);
+            let d = by_corners.point(s + 1e-7) - by_corners.point(s - 1e-7);
+            assert!((t - d / d.norm()).norm() < 1e-6, "s = {s}");
+        }
+    }
+
+    /// Each element's tension from its chord, N.
+    fn tensions(d: &DesignPlacement, ea: f64) -> Vec<f64> {
+        (0..d.nodes)
+            .map(|e| {
+                let chord = (d.positions[(e + 1) % d.nodes] - d.positions[e]).norm();
+                ea * (chord / d.rest_length - 1.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn placement_stretches_every_element_to_its_design_tension() {
+        // After the drum nodes sink by N/k, every chord is l0·(1 + T/EA): uniform 20 kN to
+        // 1 mN (on the spans, the wraps and where the belt runs onto them), and a tension
+        // rising 20 → 30 kN half way round and back to within 2 N (the table's slope over the
+        // millimetres by which an element's middle may differ from where the walk read it).
+        let mut scene = two_pulleys();
+        scene.belt.axial_stiffness = 1e6;
+        scene.belt.elements = Some(120);
+        let path = BeltPath::from_pulleys(&scene.pulleys).unwrap();
+        let ea = scene.belt.axial_stiffness;
+        let uniform = InitialState {
+            tension: vec![20e3],
+            ..Default::default()
+        };
+        let d = place(&scene, &uniform, &path).unwrap();
+        assert_eq!(d.nodes, 120);
+        for (e, t) in tensions(&d, ea).into_iter().enumerate() {
+            assert!((t - 20e3).abs() < 1e-3, "element {e}: {t}");
+        }
+        let rising = InitialState {
+            tension: vec![20e3, 30e3],
+            distance: vec![0.0, 0.5 * path.length],
+            ..Default::default()
+        };
+        let d = place(&scene, &rising, &path).unwrap();
+        let mut s = 0.0;
+        for (e, t) in tensions(&d, ea).into_iter().enumerate() {
+            let chord = t / ea * d.rest_length + d.rest_length;
+            let expect = rising.tension_at(s + 0.5 * chord, path.length);
+            assert!((t - expect).abs() < 2.0, "element {e}: {t} vs {expect}");
+            s += chord;
+        }
+        assert!(d.motion.velocity.iter().all(|v| v.norm() == 0.0));
+    }
+
+    #[test]
+    fn a_running_start_moves_nodes_and_pulleys_with_the_belt() {
+        let scene = two_pulleys();
+        let path = BeltPath::from_pulleys(&scene.pulleys).unwrap();
+        let init = InitialState {
+            tension: vec![1e3],
+            speed: -3.0,
+            ..Default::default()
+        };
+        let d = place(&scene, &init, &path).unwrap();
+        for v in &d.motion.velocity {
+            assert!((v.norm() - 3.0).abs() < 1e-6);
+        }
+        // against node order round counter-clockwise wraps: clockwise, ω = −v/r
+        for w in &d.motion.pulley_omega {
+            assert!((w + 6.0).abs() < 1e-9, "{w}");
+        }
+    }
 }

@@ -167,3 +167,29 @@ impl InitialState {
         self.tension[k] + (self.tension[k + 1] - self.tension[k]) * w
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tension_is_linear_and_periodic() {
+        let init = InitialState {
+            tension: vec![10.0, 30.0, 20.0],
+            distance: vec![1.0, 3.0, 5.0],
+            ..Default::default()
+        };
+        let length = 9.0; // the closing interval runs from 5 to 1 + 9 = 10
+        assert_eq!(init.tension_at(2.0, length), 20.0);
+        assert_eq!(init.tension_at(4.0, length), 25.0);
+        assert_eq!(init.tension_at(7.5, length), 15.0);
+        assert_eq!(init.tension_at(0.0, length), 12.0);
+        assert_eq!(init.tension_at(9.0 + 2.0, length), 20.0);
+        assert!(init.validate().is_ok());
+        let one = InitialState {
+            tension: vec![7.0],
+            ..Default::default()
+        };
+        assert_eq!(one.tension_at(3.3, length), 7.0);
+    }
+}
