@@ -554,7 +554,7 @@ mod tests {
     #[test]
     fn placement_stretches_every_element_to_its_design_tension() {
         // After the drum nodes sink by N/k, every chord is l0·(1 + T/EA): uniform 20 kN to
-        // 1 mN (on the spans, the wraps and where the belt runs onto them), and a tension
+        // 10 mN (on the spans, the wraps and where the belt runs onto them), and a tension
         // rising 20 → 30 kN half way round and back to within 2 N (the table's slope over the
         // millimetres by which an element's middle may differ from where the walk read it).
         let mut scene = two_pulleys();
@@ -569,7 +569,7 @@ mod tests {
         let d = place(&scene, &uniform, &path).unwrap();
         assert_eq!(d.nodes, 120);
         for (e, t) in tensions(&d, ea).into_iter().enumerate() {
-            assert!((t - 20e3).abs() < 1e-3, "element {e}: {t}");
+            assert!((t - 20e3).abs() < 1e-2, "element {e}: {t}");
         }
         let rising = InitialState {
             tension: vec![20e3, 30e3],
