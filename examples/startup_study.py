@@ -14,7 +14,7 @@ examples/startup_study.toml is the full-size conveyor's scene with the first cur
 Every case starts from the conveyor's static design state at rest (``Conveyor(start="rest")``,
 docs/design-start.md): the belt placed along its profile stretched to the standstill
 tensions, the takeup in place; no relaxation. The drive holds the belt for ``lead`` seconds
-(2 s; 1 s in the quick study) while the spans sink into their sag between the rolls (the
+(2 s) while the spans sink into their sag between the rolls (the
 placement puts the belt straight from roll to roll), then starts along its curve; times
 and takeup travel are counted from the curve's start. Every case uses the same takeup tension and
 motor (sized by the builder for the most demanding curve), so that the curves are compared
@@ -53,7 +53,7 @@ SHAPES = ("harrison", "nordell", "cubic", "linear")
 FULL = dict(length=1000.0, belt="ST1250", capacity=400.0, speed=2.0, ramps=(10.0, 30.0), prestart=3.0,
             settle=5.0, interval=0.05, lead=2.0)
 QUICK = dict(length=40.0, belt="EP630/4", capacity=150.0, speed=1.5, ramps=(1.0, 3.0), prestart=0.3,
-             settle=0.5, interval=0.01, lead=1.0)
+             settle=0.5, interval=0.01, lead=2.0)
 
 
 def curves(cfg: dict) -> list[beltrs.StartCurve]:
