@@ -407,8 +407,8 @@ def guo_wang_statics(length: float = GUO_WANG["length"], *, material: float = GU
     strand idlered from the tail drum's edge (r = 0.4 m past its centre) to the head drum's,
     loaded from 5 m after the tail centre (the loading point's F_bA = m'_L·v² there), the
     head drive, the return strand. ``method``: :class:`beltrs.statics.DIN22101` (default,
-    with ``f``) or :class:`~beltrs.statics.CEMA`. The same numbers as :func:`guo_wang_din`
-    (its lumped form)."""
+    with ``f``) or :class:`~beltrs.statics.CEMA`. With DIN 22101 the drive tensions of
+    :func:`guo_wang_din` (its lumped form) to 0.01 % (the loading point's place)."""
     from . import statics
 
     p = GUO_WANG
