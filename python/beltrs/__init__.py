@@ -15,6 +15,7 @@ from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWar
 from .result import Result, load_result
 from .scene import (Belt, Brake, Drive, Friction, Idler, Initial, Load, Pulley, Recording, Scene, Solver, StartCurve,
                     Takeup)
+from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 
@@ -30,12 +31,14 @@ __all__ = [
     "DivergenceError",
     "DriveDirectionWarning",
     "Drive",
+    "FluidCoupling",
     "Friction",
     "Idler",
     "IdlerContactWarning",
     "Initial",
     "Load",
     "Model",
+    "Motor",
     "NotRelaxedWarning",
     "Pulley",
     "Recording",
@@ -44,9 +47,11 @@ __all__ = [
     "SceneError",
     "Simulation",
     "Solver",
+    "SpeedController",
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "TorqueFollow",
     "UndampedContactWarning",
     "__version__",
     "analysis",
