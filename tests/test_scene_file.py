@@ -424,6 +424,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`[[loads]]`": ("load", None),
         "`[solver]`": ("solver", None),
         "`[recording]`": ("recording", None),
+        "`[initial]`": ("initial", None),
     }
     assert set(engine) == {t for t, _ in tables.values()}
     assert len(sections) == len(tables), list(sections)

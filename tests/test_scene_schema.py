@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
-                    StartCurve, Takeup)
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, Pulley, Recording, Scene, SceneError,
+                    Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 
@@ -34,6 +34,7 @@ TABLES = {
     "load": Load,
     "solver": Solver,
     "recording": Recording,
+    "initial": Initial,
 }
 
 

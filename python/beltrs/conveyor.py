@@ -37,8 +37,9 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .scene import (Belt, Brake, Drive, Friction, Holdback, Load, Pulley, Recording, Scene, Solver, SpeedController,
-                    StartCurve, Takeup, TorqueFollow)
+from .design_start import START_KINDS
+from .scene import (Belt, Brake, Drive, Friction, Holdback, Initial, Load, Pulley, Recording, Scene, Solver,
+                    SpeedController, StartCurve, Takeup, TorqueFollow)
 from .statics import check
 
 __all__ = [
@@ -382,6 +383,13 @@ class Conveyor:
             the carry pitch and 30° of arc on the drums.
         damping_ratio: belt's axial damping, fraction of critical per element. Default 0.05.
         gravity: m/s². Default 9.81.
+        start: the design state the scene starts from (:class:`beltrs.Initial`,
+            ``docs/design-start.md``): ``"rest"`` (default; the standstill tensions, the
+            takeup's and the lifts', drives holding, belt at rest) or ``"running"`` (the
+            steady-running tensions of :meth:`statics`, belt, drums and rolls at
+            ``speed``, the drives' start curves already ended). Either way the belt is
+            placed along the profile, stretched to those tensions, with the takeup where
+            the scene puts it: no relaxation.
     """
 
     profile: Sequence[Sequence[float]] = ((0.0, 0.0), (100.0, 0.0))
@@ -406,6 +414,7 @@ class Conveyor:
     element_length: Optional[float] = None
     damping_ratio: float = 0.05
     gravity: float = 9.81
+    start: str = "rest"
 
     # --- derived quantities -------------------------------------------------------------
     @property
@@ -540,9 +549,9 @@ class Conveyor:
             raise SceneError(f"carry.pitch, returns.pitch = {self.carry.pitch!r}, {self.returns.pitch!r}: "
                              f"the strands ({length:.6g} m) need at least two idlers")
         le = self.chosen_element_length
-        if any(_turn(pts, i) != 0.0 for i in range(1, len(pts) - 1)) and le > GUIDE_RADIUS * r:
-            raise SceneError(f"element_length = {le!r}: with vertical curves at most {GUIDE_RADIUS} x the drum "
-                             f"radius ({GUIDE_RADIUS * r:g} m): the curve guides must each hold an element")
+        if self.start not in START_KINDS:
+            raise SceneError(f"start = {self.start!r}: must be one of {', '.join(map(repr, START_KINDS))} (the "
+                             "design state the scene starts from)")
         if le > self.carry.pitch / 2:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
@@ -662,22 +671,25 @@ class Conveyor:
 
     # --- the scene ----------------------------------------------------------------------
     def scene(self, *, elements: Optional[int] = None, time_step_fraction: float = 0.5,
-              duration: Optional[float] = None) -> Scene:
-        """The :class:`beltrs.Scene` of this conveyor (choices: ``docs/conveyor-builder.md``).
+              duration: Optional[float] = None, method: Optional[statics.Method] = None) -> Scene:
+        """The :class:`beltrs.Scene` of this conveyor (choices: ``docs/conveyor-builder.md``),
+        starting from its design state (``start``; :meth:`initial`): no relaxation needed.
 
-        Pulleys, in belt order: "tail", the return strand's curve guides, "head", the carry
-        strand's curve guides. A guide ("carry guide 3", "return guide 1") is a small pulley
-        with zero contact stiffness at a vertical curve: the engine places the belt
-        initially along the tangents of its pulleys, and the guides make that placement
-        follow the curve (a polygon within 2 cm of it, on the idlers' side) instead of the
-        straight chord; they exert no force (the idlers carry the belt there).
+        Pulleys, in belt order: "tail", "head". The belt is placed along the profile (its
+        straights and vertical curves, the return strand a drum diameter below) through
+        ``scene.initial.path``, stretched to the design tensions.
 
         Args:
             elements: belt elements; overrides the chosen element length. Default None.
             time_step_fraction: of the stability limit. Default 0.5.
-            duration: ``recording.duration``, s. Default: the longest start curve + 5 s, or
-                with a ``stop``, at least the stop time + 1.5 x the rigid-belt coasting time
-                M_eq v / F_U + 5 s.
+            duration: ``recording.duration``, s. Default: the longest start curve + 5 s
+                (``start="rest"``), 5 s (``"running"``); with a ``stop``, at least the stop
+                time + 1.5 x the rigid-belt coasting time M_eq v / F_U + 5 s.
+            method: the static calculation a running start takes its tensions from
+                (:class:`beltrs.statics.DIN22101` or :class:`~beltrs.statics.CEMA`).
+                Default DIN 22101 with this conveyor's ``f`` (the resistance the engine's
+                idlers apply, so that the run starts in its own steady state). A start at
+                rest has no running resistance whatever the method.
         """
         self.validate()
         prof = self.carry_profile
@@ -694,19 +706,23 @@ class Conveyor:
         pdyn = self.statics()
         by_loc = {d.location: d for d in self.drives}
         drum_mass = self._drum_mass()
+        running = self.start == "running"
         pulleys: dict[str, Pulley] = {}
         for name, c, direction in (("tail", tail_c, (-d0[0], -d0[1])), ("head", head_c, d1)):
             drive = by_loc.get(name)
             takeup = None
             if self.takeup.location == name:
                 takeup = self._takeup(t_up, direction)
+            engine_drive = None if drive is None else self._drive(drive, pdyn, r)
+            curve = None if engine_drive is None else engine_drive.start_curve
+            if curve is not None and running:  # already at speed: the curve has ended
+                engine_drive = replace(engine_drive, start_curve=replace(
+                    curve, start=-(curve.prestart + curve.ramp)))
             pulleys[name] = Pulley(
                 name=name, center=_round(c), radius=r, mass=drum_mass, inertia=0.8 * drum_mass * r * r,
-                friction=lag, contact_stiffness=1e8, takeup=takeup,
-                drive=None if drive is None else self._drive(drive, pdyn, r))
+                friction=lag, contact_stiffness=1e8, takeup=takeup, drive=engine_drive)
             self._stop_on(pulleys, name)
-        carry_guides, return_guides = _guides(prof, r)
-        plist = [pulleys["tail"], *return_guides, pulleys["head"], *reversed(carry_guides)]
+        plist = [pulleys["tail"], pulleys["head"]]
 
         le = self.chosen_element_length
         # Half-critical contact damping for one node on the rolls: c = 2*0.5*sqrt(k*m).
@@ -722,12 +738,6 @@ class Conveyor:
 
         idlers = idlers_along(prof, self.carry.pitch, **rolls(self.carry, c_carry))
         idlers += idlers_along(prof, self.returns.pitch, offset=-2 * r, **rolls(self.returns, c_return))
-        # A roll where a curve guide sits (on the idlers' side of a convex curve) is left out:
-        # the engine refuses overlapping bodies; its neighbours carry that pitch of belt.
-        guides = carry_guides + return_guides
-        idlers = [d for d in idlers if all(
-            math.hypot(d.center[0] - g.center[0], d.center[1] - g.center[1]) > (g.radius + d.radius) * 1.001
-            for g in guides)]
         loads = []
         if ml > 0:
             start = prof.point(self.loading)[0]
@@ -737,18 +747,81 @@ class Conveyor:
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le))
-        longest = max((self._curve(d).end for d in self.drives), default=0.0) + 5.0
-        if self.stop is not None:
-            # Run past the stop for 1.5 x the rigid-belt coasting time M_eq v / F_U (+ 5 s).
-            coast = self.moving_mass() * self.speed / max(self._running_force(), 1.0)
-            longest = max(longest, float(self.stop.time) + 1.5 * coast + 5.0)
-        # A loaded incline has no equilibrium on frictionless drums (the belt would run back):
-        # relax with friction, the held drive drum gripping the belt (stabilise(friction=True)).
-        inclined = any(abs(float(a[1]) - float(b[1])) > 0 for a, b in zip(pts[:-1], pts[1:]))
+        longest = max((self._curve(d).end for d in self.drives), default=0.0)
+        if duration is None:
+            duration = 5.0 if running else longest + 5.0
+            if self.stop is not None:
+                # Run past the stop for 1.5 x the rigid-belt coasting time M_eq v / F_U (+ 5 s).
+                coast = self.moving_mass() * self.speed / max(self._running_force(), 1.0)
+                duration = max(duration, float(self.stop.time) + 1.5 * coast + 5.0)
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
-                     recording=Recording(duration=longest if duration is None else duration, interval=0.05,
-                                         channels=("tension", "node_position"), stabilise_friction=inclined))
+                     recording=Recording(duration=duration, interval=0.05, channels=("tension", "node_position"),
+                                         stabilise=False),
+                     initial=self.initial(method))
+
+    def design_path(self) -> list[tuple[float, float, float]]:
+        """The belt's path as corners (x, y, radius), m, in the engine's node order
+        (:attr:`beltrs.Initial.path`): from the tail drum's top (where the carry strand
+        meets it) round the tail (two 90° corners of the drum radius), along the return
+        strand (the profile a drum diameter lower; a curve of radius R there has R + 2r when
+        concave, R − 2r when convex), round the head and back along the carry profile (its
+        stations with their curve radii). Node order runs against the direction of travel,
+        as on the pulleys' own path."""
+        self.validate()
+        pts = [np.array(tuple(map(float, p))) for p in self.profile]
+        r = self.radius
+        radii = [float(x) for x in self.curve_radii]
+
+        def left(d: tuple[float, float]) -> np.ndarray:
+            return np.array([-d[1], d[0]])
+
+        d0, d1 = _unit(pts[0], pts[1]), _unit(pts[-2], pts[-1])
+        a = pts[0] - np.array(d0) * r
+        corners = [(a, r), (a - 2 * r * left(d0), r)]
+        curved = [i for i in range(1, len(pts) - 1) if _turn(pts, i) != 0.0]
+        for i in curved:  # the return strand, tail to head
+            na, nb = left(_unit(pts[i - 1], pts[i])), left(_unit(pts[i], pts[i + 1]))
+            miter = (na + nb) / (1 + float(na @ nb))
+            concave = _turn(pts, i) > 0
+            corners.append((pts[i] - 2 * r * miter, radii[i - 1] + (2 * r if concave else -2 * r)))
+        b = pts[-1] + np.array(d1) * r
+        corners += [(b - 2 * r * left(d1), r), (b, r)]
+        for i in reversed(curved):  # the carry strand, head to tail
+            corners.append((pts[i], radii[i - 1]))
+        return [(float(p[0]), float(p[1]), float(rad)) for p, rad in corners]
+
+    def initial(self, method: Optional[statics.Method] = None) -> Initial:
+        """The design state of :meth:`scene` (:class:`beltrs.Initial`), as ``start`` says:
+        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`) or of
+        the loop at standstill (``"rest"``: :func:`beltrs.design_start.at_rest`, DIN 22101
+        with f = 0), laid on :meth:`design_path`: each strand's static sections on its run
+        of the path, each drum's point on its wrap (a drive's T1 → T2 drop spread by the
+        capstan law), node order against travel (speed −``speed`` when running)."""
+        from . import design_start
+
+        corners = self.design_path()
+        length = design_start.path_length(corners)
+        r = self.radius
+        lp = self.carry_profile.length
+        if self.start == "running":
+            method = statics.DIN22101(self.f, self.gravity) if method is None else method
+            profile = self.statics(method)
+        else:
+            profile = statics.tensions(design_start.at_rest(self.loop()), self.belt_mass,
+                                       statics.DIN22101(0.0, self.gravity))
+        wrap = math.pi * r
+        back = length - 2 * wrap - lp  # the return run's length on the path
+        tail = 0.0 if self.takeup.location == "tail" else lp  # loop distance of the tail
+        head = (tail + lp) % (2 * lp)
+        pieces = [
+            design_start.Wrap("tail", path_in=wrap, path_out=0.0),
+            design_start.Run(head, head + lp, path_start=wrap + back, path_end=wrap),
+            design_start.Wrap("head", path_in=2 * wrap + back, path_out=wrap + back),
+            design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
+        ]
+        speed = -self.speed if self.start == "running" else 0.0
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""
@@ -878,57 +951,6 @@ def _turn(pts: Sequence[Sequence[float]], i: int) -> float:
     a, b = _unit(pts[i - 1], pts[i]), _unit(pts[i], pts[i + 1])
     phi = math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])
     return 0.0 if abs(phi) < 1e-12 else phi
-
-
-GUIDE_RADIUS = 0.75  #: radius of a curve guide (a zero-contact pulley), × the drum radius
-GUIDE_GAP = 0.02  #: m, largest distance of the initial polygon from a vertical curve
-
-
-def _guides(prof: Profile, r: float) -> tuple[list[Pulley], list[Pulley]]:
-    """Curve guides of the carry and the return strand, each list in the order of travel
-    along the profile (tail to head).
-
-    On each arc of the profile (radius R, turn phi) the belt is placed on a polygon of n
-    sides, n the fewest with a sagitta below GUIDE_GAP. The polygon must lie on the upper
-    side of the idlers (they push up): on a concave curve (centre above) the chords of the
-    arc do, on a convex curve (centre below) the tangent polygon does. The return strand
-    runs 2r further from the centre (concave) or nearer (convex): the same rule holds.
-    A guide's radius is 0.75 r: the engine needs every pulley to hold an element (radius
-    >= element length, at most 30° of the drum's arc = 0.52 r), and the guides of the two
-    strands, 2 r apart, must not overlap."""
-    carry: list[Pulley] = []
-    back: list[Pulley] = []
-    s = 0.0
-    for piece in prof._pieces:
-        if piece.curvature != 0.0:
-            radius = 1.0 / abs(piece.curvature)
-            concave = piece.curvature > 0
-            phi = piece.length / radius
-            n = max(1, math.ceil(phi / math.sqrt(8 * GUIDE_GAP / radius)))
-            centre = prof.point(s)[0] + np.array([-piece.direction[1], piece.direction[0]]) / piece.curvature
-            offset = 2 * r if concave else -2 * r  # the return strand, a drum diameter below
-            for strand, rad, out in (("carry", radius, carry), ("return", radius + offset, back)):
-                # vertex angles, measured from the first tangent point's radius
-                start = prof.point(s)[0] - centre
-                start = start / np.linalg.norm(start)
-                if concave:  # inscribed: vertices on the arc, both tangent points included
-                    verts = [(j * phi / n, rad) for j in range(0, n + 1)]
-                else:  # circumscribed: n sides tangent to the arc; the first and last continue
-                    # the straights, so only the n corners between them are guides
-                    verts = [((j + 0.5) * phi / n, rad / math.cos(phi / (2 * n))) for j in range(n)]
-                sign = 1.0 if piece.curvature > 0 else -1.0
-                for ang, dist in verts:
-                    c, sn = math.cos(sign * ang), math.sin(sign * ang)
-                    u = np.array([c * start[0] - sn * start[1], sn * start[0] + c * start[1]])
-                    vertex = centre + u * dist
-                    inward = -u  # towards the curve's centre
-                    # the belt wraps the guide's outer side, passing through the vertex
-                    out.append(Pulley(
-                        name=f"{strand} guide {len(out) + 1}", center=_round(vertex + inward * GUIDE_RADIUS * r),
-                        radius=GUIDE_RADIUS * r, mass=1.0, inertia=1e-3, contact_stiffness=0.0,
-                        wrap=("cw" if concave else "ccw") if strand == "carry" else ("ccw" if concave else "cw")))
-        s += piece.length
-    return carry, back
 
 
 def _round(p: Sequence[float]) -> tuple[float, float]:

@@ -38,6 +38,7 @@ __all__ = [
     "FluidCoupling",
     "Friction",
     "Holdback",
+    "Initial",
     "Idler",
     "Load",
     "Motor",
@@ -761,6 +762,46 @@ class Recording(_Table):
 
 
 @dataclass
+@_engine_table("initial")
+class Initial(_Table):
+    """The design state a run starts from (the ``[initial]`` table; ``docs/design-start.md``):
+    the belt placed already stretched to its design tensions (``beltrs.statics``), along a
+    given path if need be, at rest or moving, with no static relaxation. Builders make it
+    for you: :meth:`beltrs.conveyor.Conveyor.scene` (``start=``),
+    :func:`beltrs.design_start.initial`.
+
+    The belt's unstretched length then follows from the tensions (∫ ds / (1 + T/EA) over the
+    path; ``belt.length`` must be left None), node i sits where the stretched elements
+    before it end (deeper on a drum by its contact penetration), every node moves at
+    ``speed`` along the path, each pulley the path runs round and each idler with friction
+    turns with the belt; takeups start where the scene puts them. ``recording.stabilise``
+    must be False (the relaxation would undo the design state).
+
+    Attributes:
+        tension: design tension, N, finite, >= 0, at each ``distance`` (piecewise linear,
+            periodic round the loop); one value: the same everywhere. Required.
+        distance: m along the initial path from node 0, in node order, strictly
+            increasing, from >= 0 to below the path length. Default () (only with one
+            tension).
+        speed: belt speed along the path in node order, m/s (negative: against node
+            order). Default 0 (at rest).
+        path: corners (x, y, radius), m, in node order, closing on the first: straight
+            spans joined by arcs of each corner's radius (a drum's wrap, a vertical curve);
+            a turn needs a radius > 0 and less than 179 degrees (a 180-degree wrap is two
+            corners); node 0 sits where corner 0's arc begins; the path may not pass inside
+            a pulley or idler. Default (): the pulleys' tangent path.
+    """
+
+    tension: tuple[float, ...]
+    distance: tuple[float, ...]
+    speed: float
+    path: tuple[tuple[float, float, float], ...]
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
 @_engine_table("scene")
 class Scene(_Table):
     """A whole scene. Pulleys are listed in the order the belt meets them.
@@ -773,6 +814,8 @@ class Scene(_Table):
         gravity: m/s^2, acting in -y; 0 compiles no gravity stage. Default 9.81.
         solver: time stepping.
         recording: how ``beltrs run`` runs the scene and what it records.
+        initial: the design state to start from (:class:`Initial`). Default None: the belt
+            placed unstretched on the pulleys' path at rest, relaxed before a run.
     """
 
     belt: Belt
@@ -782,6 +825,7 @@ class Scene(_Table):
     gravity: float
     solver: Solver
     recording: Recording
+    initial: Optional[Initial]
 
     def __post_init__(self) -> None:
         _normalise(self)

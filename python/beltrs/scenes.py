@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from . import din22101
+from ._beltrs import SceneError
 from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 
 __all__ = [
@@ -14,6 +15,7 @@ __all__ = [
     "concave_conveyor",
     "guo_wang_conveyor",
     "guo_wang_din",
+    "guo_wang_statics",
     "hustrulid_loop",
     "hustrulid_torque_pulse",
     "idler_conveyor",
@@ -290,6 +292,7 @@ def guo_wang_conveyor(
     f: float = GUO_WANG["f"],
     takeup_tension: float = GUO_WANG["takeup_tension"],
     time_step_fraction: float = 0.5,
+    start: Optional[str] = None,
 ) -> Scene:
     """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (Guo & Wang 2020,
     Table 1; docs/reference-cases.md), started by a speed-controlled drive along ``start_curve``.
@@ -336,6 +339,13 @@ def guo_wang_conveyor(
         f: DIN 22101 coefficient on every idler. Default 0.02.
         takeup_tension: tension per strand at the tail, N. Default 50 kN.
         time_step_fraction: of the stability limit. Default 0.5.
+        start: the design state to start from (:class:`beltrs.Initial`,
+            ``docs/design-start.md``; :func:`guo_wang_statics` gives its tensions):
+            ``"rest"`` (the standstill tension, 50 kN all round on this level conveyor),
+            ``"running"`` (DIN 22101's steady-running tensions, belt and pulleys at
+            2 m/s, the start curve already ended) or None (default: the belt placed
+            unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
+            run).
     """
     p = GUO_WANG
     if start_curve is None:
@@ -372,10 +382,76 @@ def guo_wang_conveyor(
         elements=elements if elements is not None else math.ceil(path / element_length),
     )
     loads = [Load(mass_per_length=material, start=(5.0, r), end=(length, r))] if material > 0 else []
+    initial = None
+    if start is not None:
+        if start not in ("rest", "running"):
+            raise SceneError(f"start = {start!r}: must be None, 'rest' or 'running' (the design state to start from)")
+        initial = _guo_wang_initial(length, material, f, takeup_tension, start)
+        if start == "running":  # already at speed: the curve has ended
+            head = pulleys[1]
+            drive = replace(head.drive, start_curve=replace(
+                start_curve, start=-(start_curve.prestart + start_curve.ramp)))
+            pulleys[1] = replace(head, drive=drive)
     return Scene(belt=belt, pulleys=pulleys, idlers=idlers, loads=loads,
                  solver=Solver(time_step_fraction=time_step_fraction),
                  recording=Recording(duration=start_curve.prestart + start_curve.ramp + 5.0, interval=0.05,
-                                     channels=("tension", "node_position")))
+                                     channels=("tension", "node_position"), stabilise=start is None),
+                 initial=initial)
+
+
+def guo_wang_statics(length: float = GUO_WANG["length"], *, material: float = GUO_WANG["material"],
+                     f: float = GUO_WANG["f"], takeup_tension: float = GUO_WANG["takeup_tension"],
+                     method: Optional[Any] = None) -> Any:
+    """Case G's loop (:func:`guo_wang_conveyor` with the same arguments) as a
+    :mod:`beltrs.statics` calculation, tensions at every point: tail (the takeup), the carry
+    strand idlered from the tail drum's edge (r = 0.4 m past its centre) to the head drum's,
+    loaded from 5 m after the tail centre (the loading point's F_bA = m'_L·v² there), the
+    head drive, the return strand. ``method``: :class:`beltrs.statics.DIN22101` (default,
+    with ``f``) or :class:`~beltrs.statics.CEMA`. With DIN 22101 the drive tensions of
+    :func:`guo_wang_din` (its lumped form) to 0.01 % (the loading point's place)."""
+    from . import statics
+
+    p = GUO_WANG
+    r = p["drum_radius"]
+    mrc = p["carry_rotating_mass"] / p["carry_pitch"]
+    mrr = p["return_rotating_mass"] / p["return_pitch"]
+    loop = [
+        statics.Point("tail", takeup=takeup_tension),
+        statics.Section(5.0 - r, rotating_mass=mrc, idler_pitch=p["carry_pitch"], name="carry, before loading"),
+        statics.Point("loading", resistance=material * p["speed"] ** 2),
+        statics.Section(length - 5.0 - r, material=material, rotating_mass=mrc, idler_pitch=p["carry_pitch"],
+                        name="carry, loaded"),
+        statics.Point("head", drive=1.0),
+        statics.Section(length - 2 * r, strand="return", rotating_mass=mrr, idler_pitch=p["return_pitch"],
+                        name="return"),
+    ]
+    method = statics.DIN22101(f) if method is None else method
+    return statics.tensions(loop, p["belt_mass"], method)
+
+
+def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: float, start: str) -> Any:
+    """Case G's design state on its pulleys' path (node 0 at the tail's top, node order
+    against travel: tail wrap, return strand, head wrap, carry strand)."""
+    from . import design_start, statics
+
+    r = GUO_WANG["drum_radius"]
+    if start == "running":
+        profile = guo_wang_statics(length, material=material, f=f, takeup_tension=takeup_tension)
+    else:
+        p = GUO_WANG
+        loop = [statics.Point("tail", takeup=takeup_tension), statics.Section(length - 2 * r),
+                statics.Point("head", drive=1.0), statics.Section(length - 2 * r, strand="return")]
+        profile = statics.tensions(loop, p["belt_mass"], statics.DIN22101(0.0))
+    wrap = math.pi * r
+    total = 2 * length + 2 * wrap
+    span = length - 2 * r  # idlered length of each strand in the loop
+    pieces = [
+        design_start.Wrap("tail", path_in=wrap, path_out=0.0),
+        design_start.Run(span, 2 * span, path_start=wrap + length - r, path_end=wrap + r),
+        design_start.Wrap("head", path_in=total - length, path_out=wrap + length),
+        design_start.Run(0.0, span, path_start=total - r, path_end=total - length + r),
+    ]
+    return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0)
 
 
 @dataclass(frozen=True)

@@ -164,7 +164,10 @@ class Simulation:
         self.scene = scene
         self._core = _beltrs.Simulation(scene.to_dict())
         self.last_result: Optional[Result] = None
-        self._placed = True  # still at the initial placement: never relaxed nor run
+        # Still at the initial placement (never relaxed nor run): the first run warns if it is
+        # far from equilibrium. Not so a design state (scene.initial, docs/design-start.md): it
+        # is held by the drums' and idlers' friction, which that frictionless check omits.
+        self._placed = scene.initial is None
         warn_scene(scene)
         diagnostics.check_scene(self)
         self._busy = threading.Lock()

@@ -306,6 +306,21 @@ impl BeltPath {
     }
 }
 
+/// From parameter `s0`, the parameter of the next point of the curve `point` at
+/// straight-line distance `chord`, by regula falsi (as [`BeltPath::next_at_chord_fast`], on
+/// any curve whose parameter runs at least as fast as the chord near `s0`, e.g. a path with
+/// small offsets: the design placement's sagging spans, `crate::model`'s `design.rs`).
+pub(crate) fn next_at_chord_on(point: impl Fn(f64) -> Vector2<f64>, s0: f64, chord: f64) -> f64 {
+    let p0 = point(s0);
+    let gap = |s: f64| (point(s) - p0).norm() - chord;
+    let (lo, glo, hi, ghi) = chord_bracket(s0, chord, &gap);
+    if ghi < 0.0 {
+        return hi;
+    }
+    let tolerance = 8.0 * f64::EPSILON * (s0.abs() + chord + p0.amax());
+    illinois(lo, glo, hi, ghi, tolerance, 40, gap)
+}
+
 /// The midpoint of the bracket after `steps` bisection steps on `below(mid)` (true: the
 /// root is above `mid`), stopping early when `done(lo, hi)`. With `crossing` = an estimate of
 /// where `below` turns false, good to within `margin`, a midpoint further than `margin` from

@@ -66,7 +66,8 @@ pub struct State {
 }
 
 impl State {
-    /// The state at rest on the initial path.
+    /// The state on the initial path: at rest, or moving as a design start says
+    /// ([`Model::initial_motion`]).
     pub fn initial(model: &Model) -> State {
         let n = model.nodes;
         let position = model.initial_positions.clone();
@@ -80,16 +81,21 @@ impl State {
         let load_edges = crate::loads::initial_edges(&model.loads, &position, model.load_belt());
         let node_mass =
             crate::loads::node_masses(&model.mass, &model.loads, &load_edges, model.load_belt());
+        let motion = model.initial_motion.as_ref();
         State {
             time: 0.0,
             step: 0,
-            velocity: vec![Vector2::zeros(); n],
+            velocity: motion.map_or_else(|| vec![Vector2::zeros(); n], |m| m.velocity.clone()),
             position,
-            pulley_omega: vec![0.0; model.pulleys.len()],
+            pulley_omega: motion.map_or_else(
+                || vec![0.0; model.pulleys.len()],
+                |m| m.pulley_omega.clone(),
+            ),
             pulley_angle: vec![0.0; model.pulleys.len()],
             takeup_travel: vec![0.0; model.pulleys.len()],
             takeup_speed: vec![0.0; model.pulleys.len()],
-            idler_omega: vec![0.0; model.idlers.len()],
+            idler_omega: motion
+                .map_or_else(|| vec![0.0; model.idlers.len()], |m| m.idler_omega.clone()),
             pulley_window: vec![ContactWindow::default(); model.pulleys.len()],
             idler_element,
             drive_work: 0.0,

@@ -17,11 +17,26 @@ pub(super) struct NodeBelt {
     pub mass: Vec<f64>,
     pub inv_mass: Vec<f64>,
     pub bending_stiffness: Vec<f64>,
+    /// Initial speeds of a design start (`None`: at rest).
+    pub motion: Option<super::design::InitialMotion>,
 }
 
 /// Discretise the scene's belt on `path`: the belt may be stretched or compressed onto
 /// it by at most `belt.max_placement_strain`, and no element may be longer than the smallest pulley radius.
+///
+/// With a design state (`scene.initial`) the belt is placed stretched to its tensions
+/// instead (`super::design`).
 pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
+    if let Some(initial) = &scene.initial {
+        let d = super::design::place(scene, initial, path)?;
+        return Ok(arrays(
+            scene,
+            d.nodes,
+            d.rest_length,
+            d.positions,
+            Some(d.motion),
+        ));
+    }
     let belt = &scene.belt;
     let belt_length = belt.length.unwrap_or(path.length);
     let min_radius = scene
@@ -92,7 +107,18 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         ));
     }
     let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
+    Ok(arrays(scene, n, l0, initial_positions, None))
+}
 
+/// The per-element and per-node arrays of `n` elements of rest length `l0` (m).
+fn arrays(
+    scene: &Scene,
+    n: usize,
+    l0: f64,
+    initial_positions: Vec<Vector2<f64>>,
+    motion: Option<super::design::InitialMotion>,
+) -> NodeBelt {
+    let belt = &scene.belt;
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;
     let m_el = rho * l0;
@@ -103,7 +129,7 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
     let mass = vec![m_el; n];
     let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
     let bending_stiffness = vec![belt.bending_stiffness / l0; n];
-    Ok(NodeBelt {
+    NodeBelt {
         nodes: n,
         element_length: l0,
         initial_positions,
@@ -113,5 +139,6 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         mass,
         inv_mass,
         bending_stiffness,
-    })
+        motion,
+    }
 }

@@ -8,12 +8,14 @@
 //! in [`crate::state::State`].
 
 mod belt;
+mod design;
 mod idlers;
 mod path;
 mod pulleys;
 mod stable_step;
 mod stages;
 
+pub use design::InitialMotion;
 pub use idlers::IdlerModel;
 pub use pulleys::{PulleyModel, TakeupModel};
 pub use stable_step::StableStep;
@@ -70,10 +72,15 @@ pub struct Model {
     pub idlers: Vec<IdlerModel>,
     /// Bulk material loads.
     pub loads: Vec<LoadModel>,
-    /// The initial path.
+    /// The initial path round the pulleys (their tangents and wraps).
     pub path: BeltPath,
+    /// The path the belt is placed on when a design state gives one (`initial.path`);
+    /// `None`: on [`Model::path`].
+    pub placement: Option<BeltPath>,
     /// Initial node positions, m.
     pub initial_positions: Vec<Vector2<f64>>,
+    /// Initial speeds of a design start (`scene.initial`); `None`: at rest.
+    pub initial_motion: Option<InitialMotion>,
     /// Stages this scene runs, in order.
     pub stages: Vec<Stage>,
     /// Some pulley has a PI speed controller or a fluid-coupled motor, whose memory the
@@ -124,12 +131,17 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         let path = path::compile(scene)?;
-        let belt = belt::compile(scene, &path)?;
+        let placement = match scene.initial.as_ref().filter(|i| !i.path.is_empty()) {
+            Some(initial) => Some(design::path_from_corners(scene, &initial.path)?),
+            None => None,
+        };
+        let on = placement.as_ref().unwrap_or(&path);
+        let belt = belt::compile(scene, on)?;
         let mut pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
         // and the uniform-mass fast path).
-        let mut loads = crate::loads::compile(&scene.loads, &path, belt.element_length)?;
+        let mut loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
         loads.retain(|l| l.mass_per_length > 0.0);
         if scene.pulleys.iter().any(|p| {
             p.drive
@@ -183,7 +195,9 @@ impl Model {
             idlers,
             loads,
             path,
+            placement,
             initial_positions: belt.initial_positions,
+            initial_motion: belt.motion,
             stages,
             has_drive_memory,
             integrator: Integrator::CentralDifference,

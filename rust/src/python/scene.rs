@@ -11,7 +11,7 @@ use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, LoadSpec, PulleySpec,
+    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, InitialState, LoadSpec, PulleySpec,
     RecordingParams, Scene, SolverParams, TakeupSpec,
 };
 use crate::start_curve::StartCurve;
@@ -199,6 +199,7 @@ pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResul
         "load" => read::<LoadSpec>(obj, path).map(drop),
         "solver" => read::<SolverParams>(obj, path).map(drop),
         "recording" => read::<RecordingParams>(obj, path).map(drop),
+        "initial" => read::<InitialState>(obj, path).map(drop),
         other => Err(BeltError::invalid(
             "table",
             format!("{other:?}"),
@@ -260,5 +261,6 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("load", to_py(py, &LoadSpec::default())?)?;
     d.set_item("solver", to_py(py, &SolverParams::default())?)?;
     d.set_item("recording", to_py(py, &RecordingParams::default())?)?;
+    d.set_item("initial", to_py(py, &InitialState::default())?)?;
     Ok(d)
 }

@@ -20,12 +20,14 @@ use crate::start_curve::StartCurve;
 use serde::{Deserialize, Serialize};
 
 mod forms;
+mod initial;
 pub mod read;
 mod stops;
 mod validate;
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
+pub use initial::InitialState;
 pub use stops::{HoldbackSpec, TakeupKind};
 pub(crate) use validate::check_finite;
 
@@ -635,6 +637,9 @@ pub struct Scene {
     /// How the scene asks to be run and recorded (not used by the engine itself: the command
     /// line and `beltrs.Scene.recording` do). Checked with the scene.
     pub recording: RecordingParams,
+    /// The design state to start from ([`InitialState`]); `None`: the belt placed
+    /// unstretched on the pulleys' path, at rest, to be relaxed. Default `None`.
+    pub initial: Option<InitialState>,
 }
 
 impl Default for Scene {
@@ -647,6 +652,7 @@ impl Default for Scene {
             gravity: 9.81,
             solver: SolverParams::default(),
             recording: RecordingParams::default(),
+            initial: None,
         }
     }
 }
