@@ -328,3 +328,29 @@ def test_builder_makes_pi_master_and_follower():
         conveyor.loads('[conveyor]\n[[conveyor.drives]]\n[conveyor.drives.controller]\nbandwith = 3.0\n')
     with pytest.raises(SceneError, match=r"drives\[0\]\.controller = 'pi': expected a beltrs\.SpeedController"):
         Conveyor(drives=[DriveSpec("head", controller="pi")]).scene()
+
+
+def test_builder_makes_dol_drives_with_flywheels():
+    from beltrs import conveyor
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    motor = Motor(rated_power=75e3, rated_speed=155.5, synchronous_speed=157.08, rotor_inertia=1.5,
+                  coupling=FluidCoupling())
+    c = Conveyor(profile=[(0, 0), (150, 0)], belt="ST1250", capacity=400.0, speed=2.0,
+                 drives=[DriveSpec("head", motor=motor, flywheel=3.0)])
+    scene = c.scene()
+    d = scene.pulleys[scene.pulley_index("head")].drive
+    r = scene.pulleys[scene.pulley_index("head")].radius
+    assert d.motor.gear_ratio == pytest.approx(155.5 * r / 2.0) and d.motor.rotation == "cw"
+    assert d.flywheel == 3.0 and d.start_curve is None
+    assert c.motor_power("head") == 75e3
+    assert "motors" in beltrs.compile(scene).stages
+    text = ('[conveyor]\nprofile = [[0.0, 0.0], [150.0, 0.0]]\nbelt = "ST1250"\ncapacity = 400.0\nspeed = 2.0\n'
+            '[[conveyor.drives]]\nlocation = "head"\nflywheel = 3.0\n[conveyor.drives.motor]\nrated_power = 75e3\n'
+            'rated_speed = 155.5\nsynchronous_speed = 157.08\nrotor_inertia = 1.5\n'
+            '[conveyor.drives.motor.coupling]\n')
+    assert conveyor.loads(text).scene().to_dict() == scene.to_dict()
+    with pytest.raises(SceneError, match=r"drives\[0\]\.motor: a motor started direct on line"):
+        Conveyor(drives=[DriveSpec("head", motor=motor, controller=SpeedController())]).scene()
+    with pytest.raises(SceneError, match=r"drives\[0\]\.flywheel"):
+        Conveyor(drives=[DriveSpec("head", flywheel=-1.0)]).scene()
