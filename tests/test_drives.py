@@ -358,3 +358,17 @@ def test_builder_makes_dol_drives_with_flywheels():
         Conveyor(drives=[DriveSpec("head", motor=motor, controller=SpeedController())]).scene()
     with pytest.raises(SceneError, match=r"drives\[0\]\.flywheel"):
         Conveyor(drives=[DriveSpec("head", flywheel=-1.0)]).scene()
+
+
+def test_motor_turning_the_belt_backwards_warns():
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    motor = Motor(rated_power=75e3, rated_speed=155.5, synchronous_speed=157.08, rotor_inertia=1.5)
+    c = Conveyor(profile=[(0, 0), (150, 0)], belt="ST1250", capacity=400.0, speed=2.0,
+                 drives=[DriveSpec("head", motor=motor)])
+    scene = c.scene()
+    beltrs.Simulation(scene)  # the builder's sense: no warning
+    head = scene.pulleys[scene.pulley_index("head")]
+    head.drive.motor.rotation = "ccw"
+    with pytest.warns(beltrs.DriveDirectionWarning, match=r"drive\.motor\.rotation = 'ccw': runs the belt backwards"):
+        beltrs.Simulation(scene)
