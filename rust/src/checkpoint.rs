@@ -24,9 +24,11 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates), and the memory of each
+//! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a file that ends before it reads as zero memory). Strings, byte strings and
+//! within version 4, so a file that ends before it reads as zero memory), and the speed at
+//! which each pulley's deceleration brake began its ramp (added within version 4 after the
+//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
@@ -214,6 +216,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
+        ("brake ramps", s.brake_ramp.len(), p),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -573,6 +576,8 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(c.torque);
         w.f64(c.motor_speed);
     }
+    // Added within version 4 after the drive memory: older files end before it.
+    w.f64s(&s.brake_ramp);
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -632,6 +637,12 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         vec![DriveMemory::default(); pulley_omega.len()]
     };
+    // Added within version 4 after the drive memory (absent from older files: none begun).
+    let brake_ramp = if r.pos < r.bytes.len() {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     Ok(State {
         time,
         step,
@@ -648,6 +659,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         node_mass,
         load_edges,
         drive_memory,
+        brake_ramp,
     })
 }
 
