@@ -386,9 +386,10 @@ fn checkpoint_without_drive_memory_reads_as_zero_memory() {
     let mut a = Simulation::new(&scene).unwrap();
     a.step(100).unwrap();
     let bytes = checkpoint::encode(&a);
-    // Drop the memory block (a count and three numbers per pulley) before the checksum,
-    // and fix the payload length and the checksum.
-    let memory = 8 + 24 * scene.pulleys.len();
+    // Drop the drives' memory (a count and three numbers per pulley) and the brake ramps
+    // stored after it (a count and one number per pulley) before the checksum, and fix
+    // the payload length and the checksum.
+    let memory = 8 + 24 * scene.pulleys.len() + 8 + 8 * scene.pulleys.len();
     let end = bytes.len() - 4 - memory;
     let mut old = bytes[..end].to_vec();
     let payload = (end - 24) as u64;
