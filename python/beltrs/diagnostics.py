@@ -139,7 +139,8 @@ def _belt_direction(sim: "Simulation") -> Iterator[tuple[int, int]]:
 
 def check_drive_directions(sim: "Simulation") -> None:
     """Warn (:class:`DriveDirectionWarning`) for each speed-controlled drive whose starting
-    curve turns its pulley so that the belt moves against its path direction: the
+    curve (or DOL motor whose rotation) turns its pulley so that the belt moves against its
+    path direction: the
     direction in which the scene's loads carry material from loading to discharge point.
     Scenes without loads have no path direction and are not checked."""
     if not sim.scene.loads:
@@ -149,6 +150,19 @@ def check_drive_directions(sim: "Simulation") -> None:
         return  # no loads compiled (zero mass), or loads disagree: no single path direction
     along = next(iter(directions.values()))
     for j, p in enumerate(sim.scene.pulleys):
+        motor = None if p.drive is None else p.drive.motor
+        if motor is not None:
+            wrap = 1 if p.wrap == "ccw" else -1
+            wanted = along * wrap
+            if (1 if motor.rotation == "ccw" else -1) != wanted:
+                _warn(
+                    DriveDirectionWarning,
+                    f"pulleys[{j}].drive.motor.rotation = {motor.rotation!r}: runs the belt backwards. The "
+                    f"loads carry material {'in' if along > 0 else 'against'} node order, and the belt wraps "
+                    f"pulley {p.name!r} {p.wrap}: give rotation {'ccw' if wanted > 0 else 'cw'!r} "
+                    "(docs/drives.md).",
+                )
+            continue
         curve = None if p.drive is None else p.drive.start_curve
         if curve is None or not curve.speed:
             continue

@@ -376,3 +376,31 @@ fn unused_controller_costs_nothing() {
     assert!(sim.model.has_stage(Stage::SpeedDrives));
     assert!(!sim.model.has_drive_memory);
 }
+
+/// A checkpoint written before the drives' memory was added (it ends after the load
+/// zones) still reads, with zero memory.
+#[test]
+fn checkpoint_without_drive_memory_reads_as_zero_memory() {
+    let mut scene = rigid_scene(f64::INFINITY, 1e-4);
+    scene.pulleys[0].drive.as_mut().unwrap().controller = None;
+    let mut a = Simulation::new(&scene).unwrap();
+    a.step(100).unwrap();
+    let bytes = checkpoint::encode(&a);
+    // Drop the drives' memory (a count and three numbers per pulley) and the brake ramps
+    // stored after it (a count and one number per pulley) before the checksum, and fix
+    // the payload length and the checksum.
+    let memory = 8 + 24 * scene.pulleys.len() + 8 + 8 * scene.pulleys.len();
+    let end = bytes.len() - 4 - memory;
+    let mut old = bytes[..end].to_vec();
+    let payload = (end - 24) as u64;
+    old[16..24].copy_from_slice(&payload.to_le_bytes());
+    let crc = checkpoint::crc32(&old);
+    old.extend_from_slice(&crc.to_le_bytes());
+    let b = checkpoint::decode(&old).unwrap();
+    assert_eq!(b.state, a.state);
+    assert!(b
+        .state
+        .drive_memory
+        .iter()
+        .all(|m| *m == Default::default()));
+}

@@ -391,7 +391,8 @@ impl Simulation {
     /// v ← v + a(t)·(drift − Δt)/2. The next step then kicks by Δt from there, which is
     /// the variable-step central difference's kick (drift + Δt)/2 from v(t − drift/2)
     /// (exactly so where the forces do not depend on velocity). A pulley held by a brake or
-    /// a speed-controlled drive is put at its held speed at t − Δt/2.
+    /// a speed-controlled drive is put at its held speed at t − Δt/2; a fluid-coupled
+    /// motor's speed is shifted like the pulleys'.
     fn recentre(&mut self, drift: f64) {
         self.evaluate(Effects::ALL);
         let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
@@ -429,6 +430,10 @@ impl Simulation {
             };
             let speed = s.rigid_speed_mut(d);
             *speed = held.unwrap_or(*speed + shift * force / mass);
+        }
+        // A motor behind a fluid coupling keeps its speed at the half step like a pulley.
+        if m.has_drive_memory {
+            crate::drives::motor::advance_all(m, s, sc, shift);
         }
     }
 }
