@@ -457,35 +457,36 @@ def test_stabilise_report_says_whether_it_was_interrupted():
 # --- 10. memory -------------------------------------------------------------------------
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open: passes alone (peak within bound), but once in the full suite the child's peak RSS was "
-    "322 MB against 128 + 16 MiB; cause not yet found (see the report of issue 13)",
-)
 def test_peak_memory_of_a_run_stays_within_max_memory_plus_a_constant():
+    # Measured on the child's own memory: VmHWM and VmRSS of /proc/self/status, with the
+    # peak reset (clear_refs) after the compile, so the figure is the run's. Not ru_maxrss:
+    # Linux carries the parent's peak over into a child's ru_maxrss across fork/exec, so
+    # inside a large pytest process it read the test runner's size (322 MB once), not the run's.
     out = child(
         """
-        import math, resource, beltrs
+        import math, beltrs
         from beltrs import Belt, Pulley, Scene
-        def rss():
-            with open("/proc/self/statm") as f:
-                return int(f.read().split()[1]) * resource.getpagesize()
+        def status(key):
+            with open("/proc/self/status") as f:
+                return next(int(line.split()[1]) * 1024 for line in f if line.startswith(key + ":"))
         path = 4.0 + math.pi
         s = Scene(belt=Belt(axial_stiffness=1e6, mass_per_length=10.0, elements=2000, length=0.998 * path,
                             damping_ratio=0.05),
                   pulleys=[Pulley(center=(0.0, 0.0), radius=0.5, contact_stiffness=1e7),
                            Pulley(center=(2.0, 0.0), radius=0.5, contact_stiffness=1e7)])
         sim = beltrs.Simulation(s)
-        base = rss()
-        peak0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+        base = status("VmRSS")
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")  # reset VmHWM to the resident size now
         res = sim.run(4000 * sim.dt, record_every=1, max_memory=128 * 2**20, progress=False)
-        after = rss()
-        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+        after = status("VmRSS")
+        peak = status("VmHWM")
         print(res.tension.nbytes + res.node_position.nbytes + res.node_velocity.nbytes,
-              max(peak, peak0) - base, after - base, sim._core.recording_allocated_bytes())
+              peak - base, after - base, sim._core.recording_allocated_bytes())
         """,
         timeout=300,
     )
+    assert out.returncode == 0, out.stderr
     held, peak, after, recorder = map(int, out.stdout.split())
     bound = 128 * 2**20
     assert held > 0.5 * bound  # the recording reached its bound (and was decimated)
