@@ -112,6 +112,8 @@ PULLEY_SERIES = (
 _SCALARS = {"dt": float, "wall_time": float, "interrupted": bool, "record_every": int}
 _LISTS = ("energy_columns", "stages", "pulley_names")
 _DESCRIPTORS = ("beltrs_format", "units", "dims", "metadata_types")
+#: Fields that ``Result.__eq__`` leaves out: how the run went, not what it computed.
+_NOT_COMPARED = ("wall_time", "checkpoint_error")
 
 
 def _require(module: str, what: str) -> Any:
@@ -240,11 +242,17 @@ class Result:
         return int(self.time.shape[0])
 
     def __eq__(self, other: object) -> bool:
-        """Equal when every array is equal bit for bit (NaNs in the same places) and every
-        other field is equal."""
+        """Equal when the recorded data are: every array bit for bit (NaNs in the same
+        places), the time step, ``record_every``, ``interrupted``, the stage, pulley and
+        energy-column names and :attr:`metadata`. ``wall_time`` and ``checkpoint_error``
+        are not compared: they say how the run went on this machine (a saved and reloaded
+        Result does not carry ``checkpoint_error``; two identical runs take different wall
+        times), not what it computed."""
         if not isinstance(other, Result):
             return NotImplemented
         for f in fields(self):
+            if f.name in _NOT_COMPARED:
+                continue
             a, b = getattr(self, f.name), getattr(other, f.name)
             if f.name == "metadata":
                 if a.keys() != b.keys() or not all(_same(a[k], b[k]) for k in a):
