@@ -5,7 +5,7 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, conveyor, scenes, statics, study
+from . import analysis, analytic, conveyor, plot, scenes, statics, study
 from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__

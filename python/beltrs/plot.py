@@ -1,6 +1,14 @@
 """Plots (matplotlib, imported lazily and drawn off-screen): the demo figure and the
-figures of ``beltrs plot`` (docs/cli.md). Every panel has a title, axis labels with units,
-and tension is drawn against distance along the belt (m), not element number."""
+figures of a Result, each a function returning a matplotlib Figure (:func:`waterfall`,
+:func:`envelope`, :func:`takeup`, :func:`drives`, :func:`slip_margin`), written together
+by :func:`plot_result` and ``beltrs plot`` (docs/cli.md). Every panel has a title and axis
+labels with units; tension is drawn against distance along the belt (m), not element
+number; signs are those of an engineer (torque and power positive when driving, takeup
+travel from the start of the run).
+
+>>> fig = beltrs.plot.waterfall(res)
+>>> fig.savefig("waterfall.png")
+"""
 
 from __future__ import annotations
 
@@ -9,14 +17,23 @@ from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
 
 import numpy as np
 
+from . import _beltrs
+
 if TYPE_CHECKING:  # pragma: no cover
     from .result import Result
 
 __all__ = [
+    "FIGURES",
+    "along_route",
     "belt_distance",
     "contact_runs",
+    "drives",
+    "envelope",
     "plot_result",
     "plot_tension_around_belt",
+    "slip_margin",
+    "takeup",
+    "waterfall",
 ]
 
 
@@ -192,83 +209,263 @@ def _distance_of(res: "Result") -> tuple[np.ndarray, str]:
     return belt_distance(first, rest, n)
 
 
+def along_route(res: "Result") -> tuple[np.ndarray, np.ndarray, str]:
+    """Tension against distance along the belt's route, in a frame fixed in space.
+
+    The belt moves, so an element's material coordinate is not a place on the conveyor.
+    At every instant the tensions are placed at their element midpoints' arc length along
+    the belt's polygon, measured from the place where node 0 was at the first instant
+    (projected on the polygon of that instant), and interpolated (linearly, cyclically)
+    onto the midpoints of the first instant. So column e is always the same place on the
+    conveyor: where the drive, the takeup and the loading point are.
+
+    Returns:
+        ``(distance, tension, label)``: ``[E]`` m from node 0's start position in the
+        direction of travel, ``[n, E]`` N, and an axis label. Without recorded node
+        positions, the material coordinate (rest lengths from node 0) and a label saying so.
+    """
+    if res.tension is None:
+        raise _beltrs.BeltrsError("needs the tension channel")
+    if res.node_position is None:
+        dist, label = _distance_of(res)
+        return dist, res.tension, label + ", material: moves with the belt"
+    x_all = res.node_position
+    ref = x_all[0, 0]
+    out = np.empty_like(res.tension)
+    grid = None
+    for k in range(len(res.time)):
+        x = x_all[k]
+        chord = np.roll(x, -1, axis=0) - x
+        length = np.hypot(chord[:, 0], chord[:, 1])
+        start = np.concatenate([[0.0], np.cumsum(length)[:-1]])
+        total = float(start[-1] + length[-1])
+        t = np.clip(np.einsum("ij,ij->i", ref - x, chord) / np.maximum(length**2, 1e-300), 0.0, 1.0)
+        gap = np.hypot(*(x + t[:, None] * chord - ref).T)
+        e = int(np.argmin(gap))
+        origin = start[e] + t[e] * length[e]
+        place = (start + 0.5 * length - origin) % total
+        if grid is None:
+            grid = place.copy()
+        order = np.argsort(place)
+        out[k] = np.interp(grid, place[order], res.tension[k, order], period=total)
+    return grid, out, "distance along the belt's route from node 0's start (m)"
+
+
+def _pulley_arcs(res: "Result") -> list[tuple[str, float, float]]:
+    """Each pulley's contact arc at the first instant as (name, first, last) distance
+    along the route (the frame of :func:`along_route`), for marking the plots."""
+    radius = res.metadata.get("pulley_radius") if res.metadata else None
+    if res.node_position is None or radius is None:
+        return []
+    x = res.node_position[0]
+    chord = np.roll(x, -1, axis=0) - x
+    start = np.concatenate([[0.0], np.cumsum(np.hypot(chord[:, 0], chord[:, 1]))[:-1]])
+    names = _names(res)
+    return [(names[j], float(start[a]), float(start[b]))
+            for j, a, b in contact_runs(x, res.pulley_position[0], np.asarray(radius, dtype=float))]
+
+
+def _mark_pulleys(ax: Any, arcs: list[tuple[str, float, float]], total: float, shade: bool = True,
+                  color: str = "grey") -> None:
+    """Dashed lines where the belt meets and leaves each pulley, the arc shaded (split in
+    two where it spans the start of the route), the pulley's name above the axes."""
+    for name, a, b in arcs:
+        spans = [(a, b)] if b >= a else [(a, total), (0.0, b)]
+        if shade:
+            for lo, hi in spans:
+                ax.axvspan(lo, hi, color=color, alpha=0.15, lw=0)
+        for edge in (a, b):
+            ax.axvline(edge, color=color, lw=0.6, ls="--", alpha=0.8)
+        lo, hi = max(spans, key=lambda span: span[1] - span[0])
+        ax.annotate(name, ((lo + hi) / 2, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 2),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=8)
+
+
+def _route_length(res: "Result") -> float:
+    if res.node_position is None:
+        return 0.0
+    x = res.node_position[0]
+    return float(np.hypot(*(np.roll(x, -1, axis=0) - x).T).sum())
+
+
+def _names(res: "Result") -> list[str]:
+    names = list(res.pulley_names) or [str(j) for j in range(res.takeup_travel.shape[1])]
+    return [name or f"pulley {j}" for j, name in enumerate(names)]
+
+
+def _new(figsize: tuple[float, float], rows: int = 1) -> tuple[Any, Any]:
+    plt = _pyplot()
+    return plt.subplots(rows, 1, figsize=figsize, sharex=True, squeeze=rows == 1)
+
+
+def _peak(kn: np.ndarray) -> tuple[int, int]:
+    k = np.unravel_index(int(np.argmax(kn)), kn.shape)
+    return int(k[0]), int(k[1])
+
+
+def waterfall(res: "Result") -> Any:
+    """Tension waterfall: tension (colour, kN) over distance along the belt's route (x,
+    :func:`along_route`: a frame fixed in space, pulleys' contact arcs shaded) and time
+    (y), the peak marked. Stress waves are the slanted stripes. Needs the tension channel.
+    Returns the matplotlib Figure."""
+    if res.tension is None or len(res.time) < 2:
+        raise _beltrs.BeltrsError("waterfall: needs the tension channel and at least two instants")
+    dist, tension, xlabel = along_route(res)
+    kn = tension / 1e3
+    fig, ax = _new((9, 5.5))
+    mesh = ax.pcolormesh(dist, res.time, kn, shading="nearest", cmap="viridis", rasterized=True)
+    fig.colorbar(mesh, ax=ax, label="tension (kN)")
+    _mark_pulleys(ax, _pulley_arcs(res), _route_length(res), shade=False, color="white")
+    k = _peak(kn)
+    ax.plot(dist[k[1]], res.time[k[0]], "v", color="crimson", mec="white", ms=10,
+            label=f"peak {kn[k]:.1f} kN at t = {res.time[k[0]]:.2f} s, {dist[k[1]]:.1f} m")
+    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("time (s)")
+    ax.set_title("Tension waterfall (dashed: where the belt meets and leaves each pulley)", pad=14)
+    fig.tight_layout()
+    return fig
+
+
+def envelope(res: "Result") -> Any:
+    """Tension envelope along the belt's route (:func:`along_route`): the largest and
+    smallest tension at each place over the run (kN), the first and last instants, the
+    peak, and the pulleys' contact arcs shaded. Returns the Figure."""
+    if res.tension is None or len(res.time) < 1:
+        raise _beltrs.BeltrsError("envelope: needs the tension channel")
+    dist, tension, xlabel = along_route(res)
+    kn = tension / 1e3
+    fig, ax = _new((9, 5))
+    ax.fill_between(dist, kn.min(axis=0), kn.max(axis=0), color="C0", alpha=0.25, label="range over the run")
+    ax.plot(dist, kn.max(axis=0), color="C3", lw=1.2, label="max")
+    ax.plot(dist, kn.min(axis=0), color="C2", lw=1.2, label="min")
+    ax.plot(dist, kn[0], color="k", lw=0.8, ls=":", label=f"start, t = {res.time[0]:.2f} s")
+    ax.plot(dist, kn[-1], color="k", lw=0.8, label=f"end, t = {res.time[-1]:.2f} s")
+    k = _peak(kn)
+    ax.plot(dist[k[1]], kn[k], "v", color="crimson", ms=9,
+            label=f"peak {kn[k]:.1f} kN at t = {res.time[k[0]]:.2f} s")
+    low = np.unravel_index(int(np.argmin(kn)), kn.shape)
+    if kn[low] < 0:
+        ax.axhline(0, color="grey", lw=0.8)
+        ax.plot(dist[low[1]], kn[low], "^", color="C2", ms=8, label=f"lowest {kn[low]:.1f} kN (compression)")
+    _mark_pulleys(ax, _pulley_arcs(res), _route_length(res))
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("tension (kN)")
+    ax.set_title("Tension envelope along the belt (max and min over the run; shaded: pulleys)", pad=14)
+    ax.grid(True, alpha=0.4)
+    ax.legend(fontsize=8, loc="best")
+    fig.tight_layout()
+    return fig
+
+
+def _moving(res: "Result") -> list[int]:
+    return [j for j in range(res.takeup_travel.shape[1]) if np.any(res.takeup_travel[:, j] != res.takeup_travel[0, j])]
+
+
+def takeup(res: "Result") -> Any:
+    """Takeup travel since the start of the run (m, positive towards the counterweight)
+    of every pulley that moved. Returns the Figure."""
+    moved = _moving(res)
+    if not moved:
+        raise _beltrs.BeltrsError("takeup: no pulley moved during the run")
+    names = _names(res)
+    travel = res.takeup_travel_from_start
+    fig, ax = _new((8, 4.5))
+    for j in moved:
+        ax.plot(res.time, travel[:, j] * 1e3, label=f"{names[j]} (start at {res.takeup_travel[0, j]:.4f} m "
+                "from its scene position)")
+    ax.axhline(0, color="grey", lw=0.8)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("travel since the start (mm)")
+    ax.set_title("Takeup travel (+ towards the counterweight)")
+    ax.grid(True, alpha=0.4)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def _driven(res: "Result") -> list[int]:
+    return [j for j in range(res.drive_torque.shape[1]) if np.any(res.drive_torque[:, j] != 0)]
+
+
+def drives(res: "Result") -> Any:
+    """Drive torque (kN·m, positive when it drives the belt along its direction of travel)
+    and drive power (kW, positive when delivered) of every driven pulley against time.
+    Returns the Figure."""
+    driven = _driven(res)
+    if not driven:
+        raise _beltrs.BeltrsError("drives: no pulley has a drive torque")
+    names = _names(res)
+    torque = res.driving_torque
+    power = res.drive_power_kw
+    fig, (a1, a2) = _new((8, 6.5), rows=2)
+    for j in driven:
+        a1.plot(res.time, torque[:, j] / 1e3, label=names[j])
+        a2.plot(res.time, power[:, j], label=names[j])
+    a1.set_ylabel("torque (kN·m)")
+    a1.set_title("Drive torque (+ driving the belt along its direction of travel)")
+    a2.set_ylabel("power (kW)")
+    a2.set_title("Drive power (+ delivered to the belt)")
+    a2.set_xlabel("time (s)")
+    for a in (a1, a2):
+        a.axhline(0, color="grey", lw=0.8)
+        a.grid(True, alpha=0.4)
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def slip_margin(res: "Result") -> Any:
+    """Capstan utilisation of every driven or braked pulley with friction against time:
+    (T1 - T2)/(T2·(e^{µs·θ} - 1)), 1 at the Euler–Eytelwein slip limit
+    (:meth:`beltrs.Result.capstan`), with the tension ratio T1/T2 against e^{µs·θ} below.
+    Returns the Figure."""
+    cap = res.capstan()
+    names = _names(res)
+    loaded = [j for j in range(len(names)) if cap.friction[j] > 0 and (
+        np.any(res.drive_torque[:, j] != 0) or np.any(res.brake_torque[:, j] != 0))]
+    if not loaded:
+        raise _beltrs.BeltrsError("slip_margin: no driven or braked pulley has friction")
+    fig, (a1, a2) = _new((8, 6.5), rows=2)
+    for j in loaded:
+        line, = a1.plot(res.time, cap.utilisation[:, j], label=names[j])
+        a2.plot(res.time, cap.tight[:, j] / cap.slack[:, j], color=line.get_color(), label=f"{names[j]}: T1/T2")
+        a2.plot(res.time, np.exp(cap.friction[j] * cap.wrap[:, j]), color=line.get_color(), ls="--",
+                label=f"{names[j]}: e^(µs·θ), µs = {cap.friction[j]:g}")
+    a1.axhline(1.0, color="crimson", lw=1, ls="--", label="slip limit")
+    a1.set_ylim(bottom=0)
+    a1.set_ylabel("utilisation (1)")
+    a1.set_title("Slip margin: capstan utilisation (T1 − T2) / (T2·(e^(µs·θ) − 1))")
+    a2.set_ylabel("tension ratio (1)")
+    a2.set_title("Tension ratio against the capstan limit")
+    a2.set_xlabel("time (s)")
+    for a in (a1, a2):
+        a.grid(True, alpha=0.4)
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+#: The figures of :func:`plot_result` (and ``beltrs plot``): file suffix and function.
+FIGURES = {"waterfall": waterfall, "envelope": envelope, "takeup": takeup, "drives": drives, "slip": slip_margin}
+
+
 def plot_result(res: "Result", out_dir: Union[str, Path], stem: str = "result") -> list[Path]:
-    """Write the figures of ``beltrs plot`` for ``res`` into ``out_dir`` and return their
-    paths: ``STEM_waterfall.png`` (tension over distance along the belt and time),
-    ``STEM_envelope.png`` (max, min and final tension along the belt), ``STEM_takeup.png``
-    (takeup travel of each takeup pulley against time), ``STEM_drives.png`` (drive
-    torque and power of each driven pulley against time). Figures whose data were not
-    recorded (no tension, no takeup, no drive) are skipped."""
+    """Write the figures of ``beltrs plot`` for ``res`` into ``out_dir`` as PNGs and return
+    their paths: ``STEM_waterfall.png`` (:func:`waterfall`), ``STEM_envelope.png``
+    (:func:`envelope`), ``STEM_takeup.png`` (:func:`takeup`), ``STEM_drives.png``
+    (:func:`drives`) and ``STEM_slip.png`` (:func:`slip_margin`). A figure whose data the
+    result lacks (no tension recorded, no takeup, no drive, no friction) is skipped."""
     plt = _pyplot()
     out_dir = Path(out_dir)
     written: list[Path] = []
-    time = res.time
-    names = list(res.pulley_names) or [str(j) for j in range(res.takeup_travel.shape[1])]
-
-    def save(fig: Any, name: str) -> None:
-        fig.tight_layout()
+    for name, draw in FIGURES.items():
+        try:
+            fig = draw(res)
+        except _beltrs.BeltrsError:
+            continue
         path = out_dir / f"{stem}_{name}.png"
         fig.savefig(path, dpi=100)
         plt.close(fig)
         written.append(path)
-
-    if res.tension is not None and len(time) >= 2:
-        dist, xlabel = _distance_of(res)
-        kn = res.tension / 1e3
-        fig, ax = plt.subplots(figsize=(9, 5.5))
-        mesh = ax.pcolormesh(dist, time, kn, shading="nearest", cmap="viridis")
-        fig.colorbar(mesh, ax=ax, label="tension (kN)")
-        k = np.unravel_index(int(np.argmax(kn)), kn.shape)
-        ax.plot(dist[k[1]], time[k[0]], "v", color="crimson", ms=9,
-                label=f"peak {kn[k]:.1f} kN at t = {time[k[0]]:.2f} s")
-        ax.legend(loc="upper right", fontsize=8)
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel("time (s)")
-        ax.set_title("Tension waterfall: tension over the belt and time")
-        save(fig, "waterfall")
-
-        fig, ax = plt.subplots(figsize=(9, 5))
-        ax.fill_between(dist, kn.min(axis=0), kn.max(axis=0), color="C0", alpha=0.3, label="range over the run")
-        ax.plot(dist, kn.max(axis=0), color="C3", lw=1, label="max")
-        ax.plot(dist, kn.min(axis=0), color="C2", lw=1, label="min")
-        ax.plot(dist, kn[0], color="k", lw=0.8, ls=":", label=f"t = {time[0]:.2f} s")
-        ax.plot(dist, kn[-1], color="k", lw=0.8, label=f"t = {time[-1]:.2f} s")
-        ax.plot(dist[k[1]], kn[k], "v", color="crimson", ms=9, label=f"peak {kn[k]:.1f} kN")
-        if kn.min() < 0:
-            ax.axhline(0, color="grey", lw=0.8)
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel("tension (kN)")
-        ax.set_title("Tension envelope along the belt")
-        ax.grid(True, alpha=0.4)
-        ax.legend(fontsize=8)
-        save(fig, "envelope")
-
-    takeups = [j for j in range(res.takeup_travel.shape[1]) if np.any(res.takeup_travel[:, j] != 0)]
-    if takeups:
-        fig, ax = plt.subplots(figsize=(8, 4.5))
-        for j in takeups:
-            ax.plot(time, res.takeup_travel[:, j], label=names[j])
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("takeup travel (m, + towards the counterweight)")
-        ax.set_title("Takeup travel")
-        ax.grid(True, alpha=0.4)
-        ax.legend(fontsize=8)
-        save(fig, "takeup")
-
-    driven = [j for j in range(res.drive_torque.shape[1]) if np.any(res.drive_torque[:, j] != 0)]
-    if driven:
-        power = res.drive_power
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
-        for j in driven:
-            a1.plot(time, res.drive_torque[:, j] / 1e3, label=names[j])
-            a2.plot(time, power[:, j] / 1e3, label=names[j])
-        a1.set_ylabel("drive torque (kN·m, ccw +)")
-        a1.set_title("Drive torque")
-        a2.set_ylabel("drive power (kW)")
-        a2.set_title("Drive power (torque × pulley speed)")
-        a2.set_xlabel("time (s)")
-        for a in (a1, a2):
-            a.grid(True, alpha=0.4)
-            a.legend(fontsize=8)
-        save(fig, "drives")
     return written

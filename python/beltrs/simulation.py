@@ -638,8 +638,21 @@ class Simulation:
             interrupted=bool(self._core.interrupted),
             pulley_names=[p.name for p in self.scene.pulleys],
             record_every=int(self._core.record_every) if record_every is None else record_every,
-            metadata={"rest_length": self.rest_length},
+            metadata={"rest_length": self.rest_length, **self._pulley_constants()},
         )
+
+    def _pulley_constants(self) -> dict[str, np.ndarray]:
+        """Per-pulley constants a Result needs for its engineering views (signs along the
+        direction of travel, surface speed, capstan): radius, m; +1/-1 for a belt wrapping
+        counter-clockwise/clockwise in node order; static friction coefficient (0 without)."""
+        pulleys = self.scene.pulleys
+        return {
+            "pulley_radius": np.array([float(p.radius) for p in pulleys]),
+            "pulley_travel_sign": np.array([1.0 if p.wrap == "ccw" else -1.0 for p in pulleys]),
+            "pulley_friction_static": np.array(
+                [float(p.friction.static) if p.friction is not None else 0.0 for p in pulleys]
+            ),
+        }
 
     # --- checkpoints -------------------------------------------------------------------
     def save_checkpoint(self, path: Union[str, os.PathLike]) -> None:
