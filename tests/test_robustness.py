@@ -572,3 +572,26 @@ def test_friction_model_none_is_accepted():
     scene = tiny_scene()
     scene.pulleys[0].friction = Friction(model="none")
     beltrs.Simulation(scene).run(100 * 1e-5, progress=False)
+
+
+# --- found by the 10^4-case campaign (tests/fuzz_campaign.py, docs/runtime.md) ----------
+
+
+def test_default_record_interval_of_a_belt_without_wave_speed():
+    # EA = 5e-324 is a valid (positive) stiffness whose wave speed sqrt(EA/m') underflows
+    # to 0: the default recording interval divided by it (ZeroDivisionError, seed 1425).
+    sim = beltrs.Simulation(tiny_scene(axial_stiffness=5e-324))
+    assert sim.default_record_interval() == simulation_module.MAX_RECORD_INTERVAL
+    res = sim.run(5 * sim.dt, progress=False)
+    assert np.all(np.isfinite(res.tension))
+
+
+def test_idler_distance_of_a_very_short_element_far_away_gives_no_runtime_warning():
+    # A far idler and a 1e-200 m element overflowed the projection parameter (numpy
+    # RuntimeWarning, an error under -W error); it clips to the element's end.
+    from beltrs.diagnostics import _distance_to_path
+
+    path = np.array([[0.0, 0.0], [1e-200, 0.0], [1.0, 1.0]])
+    d = _distance_to_path(np.array([[1e300, 0.0]]), path)
+    assert d[0] == pytest.approx(1e300)
+

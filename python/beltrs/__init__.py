@@ -52,6 +52,7 @@ __all__ = [
     "conveyor",
     "load_result",
     "load_scene",
+    "plot",
     "scenes",
     "statics",
     "study",

@@ -307,13 +307,13 @@ def _out_dir(result_path: str, out_dir: Optional[str]) -> Path:
     return directory
 
 
-def plot_command(result_path: str, out_dir: Optional[str] = None) -> int:
+def plot_command(result_path: str, out_dir: Optional[str] = None, cutoff: Optional[float] = None) -> int:
     """``beltrs plot``: the figures of :func:`beltrs.plot.plot_result`, beside the result
-    file (or in ``out_dir``)."""
+    file (or in ``out_dir``); ``cutoff`` (Hz) adds low-passed series."""
     from beltrs.plot import plot_result
 
     res = _load(result_path)
-    paths = plot_result(res, _out_dir(result_path, out_dir), Path(result_path).stem)
+    paths = plot_result(res, _out_dir(result_path, out_dir), Path(result_path).stem, cutoff=cutoff)
     for path in paths:
         print(f"wrote {path}")
     if not paths:
@@ -414,6 +414,16 @@ def _duration(text: str) -> float:
     return value
 
 
+def _frequency(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a frequency, Hz") from None
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite frequency > 0 (Hz)")
+    return value
+
+
 def _elements(text: str) -> int:
     try:
         value = int(text)
@@ -477,6 +487,9 @@ def parser() -> argparse.ArgumentParser:
     )
     pl.add_argument("result", help="result file (.npz or .nc)")
     pl.add_argument("--out-dir", default=None, help="directory for the PNGs (default: beside the result)")
+    pl.add_argument("--cutoff", type=_frequency, default=None, metavar="HZ",
+                    help="also draw torque, power and slip margin low-passed below HZ, and the waterfall and "
+                    "envelope from tensions low-passed below HZ (the band is named on the figure); default: raw only")
     ex = sub.add_parser(
         "export", help="export a result as CSV files",
         description="Write a result's time series as CSV: RESULT_pulleys.csv (every per-pulley series, unit "
@@ -500,7 +513,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if args.command == "check":
         return _guarded(lambda: check_scene(args.scene))
     if args.command == "plot":
-        return _guarded(lambda: plot_command(args.result, args.out_dir))
+        return _guarded(lambda: plot_command(args.result, args.out_dir, args.cutoff))
     if args.command == "export":
         return _guarded(lambda: export_command(args.result, args.out_dir))
     return EXIT_BAD_INPUT

@@ -209,60 +209,117 @@ def _distance_of(res: "Result") -> tuple[np.ndarray, str]:
     return belt_distance(first, rest, n)
 
 
-def along_route(res: "Result") -> tuple[np.ndarray, np.ndarray, str]:
+def _arc_lengths(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """Arc length along the closed polygon ``x`` to each node, each element's length, and
+    the polygon's length."""
+    chord = np.roll(x, -1, axis=0) - x
+    length = np.hypot(chord[:, 0], chord[:, 1])
+    start = np.concatenate([[0.0], np.cumsum(length)[:-1]])
+    return start, length, float(start[-1] + length[-1])
+
+
+def _route_frame(res: "Result") -> tuple[int, float, list[tuple[str, float, float]]]:
+    """The route's frame at the first instant: the direction of travel (+1 node order), the
+    origin (arc length in node order from node 0's start: where the belt leaves the first
+    driven pulley, else node 0) and every pulley's contact arc as (name, meets, leaves) in
+    route distance."""
+    x = res.node_position[0]
+    start, _, total = _arc_lengths(x)
+    try:
+        direction = res.travel_direction
+    except _beltrs.BeltrsError:
+        direction = 1
+    radius = res.metadata.get("pulley_radius") if res.metadata else None
+    runs = [] if radius is None else contact_runs(x, res.pulley_position[0], np.asarray(radius, dtype=float))
+    leaves = {j: (last if direction > 0 else first) for j, first, last in runs}
+    meets = {j: (first if direction > 0 else last) for j, first, last in runs}
+    driven = [j for j in range(res.drive_torque.shape[1]) if np.any(res.drive_torque[:, j] != 0) and j in leaves]
+    origin = float(start[leaves[driven[0]]]) if driven else 0.0
+    names = _names(res)
+
+    def route(place: float) -> float:
+        return float((direction * (place - origin)) % total)
+
+    arcs = [(names[j], route(start[meets[j]]), route(start[leaves[j]])) for j, _, _ in runs]
+    return direction, origin, arcs
+
+
+def along_route(res: "Result", cutoff: Optional[float] = None) -> tuple[np.ndarray, np.ndarray, str]:
     """Tension against distance along the belt's route, in a frame fixed in space.
 
     The belt moves, so an element's material coordinate is not a place on the conveyor.
     At every instant the tensions are placed at their element midpoints' arc length along
-    the belt's polygon, measured from the place where node 0 was at the first instant
-    (projected on the polygon of that instant), and interpolated (linearly, cyclically)
-    onto the midpoints of the first instant. So column e is always the same place on the
-    conveyor: where the drive, the takeup and the loading point are.
+    the belt's polygon and interpolated (linearly, cyclically) onto the places of the
+    first instant's midpoints. Distance runs in the belt's direction of travel
+    (:attr:`beltrs.Result.travel_direction`) from where the belt leaves the first driven
+    pulley at the first instant (so a drive's slack side is at 0 and its tight side at the
+    end), or from node 0's first position without a drive. So column e is always the same
+    place on the conveyor.
+
+    Args:
+        res: the result (tension and node positions recorded).
+        cutoff: if given, each place's tension is low-passed in time below ``cutoff`` Hz
+            (:func:`beltrs.analysis.low_pass`), e.g. to look through the node model's
+            chordal ripple; the label says so.
 
     Returns:
-        ``(distance, tension, label)``: ``[E]`` m from node 0's start position in the
-        direction of travel, ``[n, E]`` N, and an axis label. Without recorded node
-        positions, the material coordinate (rest lengths from node 0) and a label saying so.
+        ``(distance, tension, label)``: ``[E]`` m ascending, ``[n, E]`` N, an axis label.
+        Without recorded node positions, the material coordinate (rest lengths from node 0)
+        and a label saying so.
     """
     if res.tension is None:
         raise _beltrs.BeltrsError("needs the tension channel")
     if res.node_position is None:
         dist, label = _distance_of(res)
-        return dist, res.tension, label + ", material: moves with the belt"
-    x_all = res.node_position
-    ref = x_all[0, 0]
-    out = np.empty_like(res.tension)
-    grid = None
-    for k in range(len(res.time)):
-        x = x_all[k]
-        chord = np.roll(x, -1, axis=0) - x
-        length = np.hypot(chord[:, 0], chord[:, 1])
-        start = np.concatenate([[0.0], np.cumsum(length)[:-1]])
-        total = float(start[-1] + length[-1])
-        t = np.clip(np.einsum("ij,ij->i", ref - x, chord) / np.maximum(length**2, 1e-300), 0.0, 1.0)
-        gap = np.hypot(*(x + t[:, None] * chord - ref).T)
-        e = int(np.argmin(gap))
-        origin = start[e] + t[e] * length[e]
-        place = (start + 0.5 * length - origin) % total
-        if grid is None:
-            grid = place.copy()
-        order = np.argsort(place)
-        out[k] = np.interp(grid, place[order], res.tension[k, order], period=total)
-    return grid, out, "distance along the belt's route from node 0's start (m)"
+        out, label = res.tension, label + ", material: moves with the belt"
+    else:
+        direction, origin, _ = _route_frame(res)
+        x_all = res.node_position
+        ref = x_all[0, 0]
+        out = np.empty_like(res.tension)
+        grid = None
+        for k in range(len(res.time)):
+            x = x_all[k]
+            start, length, total = _arc_lengths(x)
+            chord = np.roll(x, -1, axis=0) - x
+            t = np.clip(np.einsum("ij,ij->i", ref - x, chord) / np.maximum(length**2, 1e-300), 0.0, 1.0)
+            gap = np.hypot(*(x + t[:, None] * chord - ref).T)
+            e = int(np.argmin(gap))
+            place = start + 0.5 * length - (start[e] + t[e] * length[e])  # node order, from node 0's start
+            place = (direction * (place - origin)) % total
+            if grid is None:
+                grid = place.copy()
+            order = np.argsort(place)
+            out[k] = np.interp(grid, place[order], res.tension[k, order], period=total)
+        columns = np.argsort(grid)
+        dist, out = grid[columns], out[:, columns]
+        label = "distance along the route in the direction of travel (m)"
+    if cutoff is not None:
+        out = _low_pass(res, out, cutoff)
+        label += f"; below {cutoff:g} Hz"
+    return dist, out, label
+
+
+def _low_pass(res: "Result", values: np.ndarray, cutoff: float) -> np.ndarray:
+    """``values`` ([n, ...]) low-passed in time below ``cutoff`` Hz."""
+    from .analysis import low_pass
+
+    if not (isinstance(cutoff, (int, float)) and np.isfinite(cutoff) and cutoff > 0):
+        raise _beltrs.BeltrsError(f"cutoff = {cutoff!r}: must be a frequency > 0, Hz")
+    if len(res.time) < 3:
+        return values
+    interval = float(np.median(np.diff(res.time)))
+    flat = np.asarray(values, dtype=float).reshape(len(res.time), -1)
+    return np.stack([low_pass(flat[:, c], interval, cutoff) for c in range(flat.shape[1])], axis=1).reshape(
+        np.shape(values))
 
 
 def _pulley_arcs(res: "Result") -> list[tuple[str, float, float]]:
-    """Each pulley's contact arc at the first instant as (name, first, last) distance
+    """Each pulley's contact arc at the first instant as (name, meets, leaves) distance
     along the route (the frame of :func:`along_route`), for marking the plots."""
-    radius = res.metadata.get("pulley_radius") if res.metadata else None
-    if res.node_position is None or radius is None:
+    if res.node_position is None or not res.metadata or res.metadata.get("pulley_radius") is None:
         return []
-    x = res.node_position[0]
-    chord = np.roll(x, -1, axis=0) - x
-    start = np.concatenate([[0.0], np.cumsum(np.hypot(chord[:, 0], chord[:, 1]))[:-1]])
-    names = _names(res)
-    return [(names[j], float(start[a]), float(start[b]))
-            for j, a, b in contact_runs(x, res.pulley_position[0], np.asarray(radius, dtype=float))]
+    return _route_frame(res)[2]
 
 
 def _mark_pulleys(ax: Any, arcs: list[tuple[str, float, float]], total: float, shade: bool = True,
@@ -295,7 +352,7 @@ def _names(res: "Result") -> list[str]:
 
 def _new(figsize: tuple[float, float], rows: int = 1) -> tuple[Any, Any]:
     plt = _pyplot()
-    return plt.subplots(rows, 1, figsize=figsize, sharex=True, squeeze=rows == 1)
+    return plt.subplots(rows, 1, figsize=figsize, sharex=True)
 
 
 def _peak(kn: np.ndarray) -> tuple[int, int]:
@@ -303,14 +360,15 @@ def _peak(kn: np.ndarray) -> tuple[int, int]:
     return int(k[0]), int(k[1])
 
 
-def waterfall(res: "Result") -> Any:
+def waterfall(res: "Result", cutoff: Optional[float] = None) -> Any:
     """Tension waterfall: tension (colour, kN) over distance along the belt's route (x,
-    :func:`along_route`: a frame fixed in space, pulleys' contact arcs shaded) and time
-    (y), the peak marked. Stress waves are the slanted stripes. Needs the tension channel.
-    Returns the matplotlib Figure."""
+    :func:`along_route`: a frame fixed in space, in the direction of travel, pulleys'
+    contact arcs dashed) and time (y), the peak marked. Stress waves are the slanted
+    stripes. ``cutoff`` (Hz): low-pass each place's tension in time first (the band is in
+    the axis label). Needs the tension channel. Returns the matplotlib Figure."""
     if res.tension is None or len(res.time) < 2:
         raise _beltrs.BeltrsError("waterfall: needs the tension channel and at least two instants")
-    dist, tension, xlabel = along_route(res)
+    dist, tension, xlabel = along_route(res, cutoff)
     kn = tension / 1e3
     fig, ax = _new((9, 5.5))
     mesh = ax.pcolormesh(dist, res.time, kn, shading="nearest", cmap="viridis", rasterized=True)
@@ -327,13 +385,14 @@ def waterfall(res: "Result") -> Any:
     return fig
 
 
-def envelope(res: "Result") -> Any:
+def envelope(res: "Result", cutoff: Optional[float] = None) -> Any:
     """Tension envelope along the belt's route (:func:`along_route`): the largest and
     smallest tension at each place over the run (kN), the first and last instants, the
-    peak, and the pulleys' contact arcs shaded. Returns the Figure."""
+    peak, and the pulleys' contact arcs shaded. ``cutoff`` (Hz): from tensions low-passed
+    in time (named in the axis label). Returns the Figure."""
     if res.tension is None or len(res.time) < 1:
         raise _beltrs.BeltrsError("envelope: needs the tension channel")
-    dist, tension, xlabel = along_route(res)
+    dist, tension, xlabel = along_route(res, cutoff)
     kn = tension / 1e3
     fig, ax = _new((9, 5))
     ax.fill_between(dist, kn.min(axis=0), kn.max(axis=0), color="C0", alpha=0.25, label="range over the run")
@@ -388,9 +447,20 @@ def _driven(res: "Result") -> list[int]:
     return [j for j in range(res.drive_torque.shape[1]) if np.any(res.drive_torque[:, j] != 0)]
 
 
-def drives(res: "Result") -> Any:
+def _series(ax: Any, res: "Result", values: np.ndarray, label: str, cutoff: Optional[float], **kw: Any) -> Any:
+    """Plot a time series: raw; with ``cutoff``, raw thin and light and the low-passed
+    series over it, labelled with its band."""
+    if cutoff is None or not np.all(np.isfinite(values)):
+        return ax.plot(res.time, values, label=label, **kw)[0]
+    raw = ax.plot(res.time, values, lw=0.6, alpha=0.35, **kw)[0]
+    kw.setdefault("color", raw.get_color())
+    return ax.plot(res.time, _low_pass(res, values, cutoff), lw=1.6, label=f"{label}, below {cutoff:g} Hz", **kw)[0]
+
+
+def drives(res: "Result", cutoff: Optional[float] = None) -> Any:
     """Drive torque (kN·m, positive when it drives the belt along its direction of travel)
     and drive power (kW, positive when delivered) of every driven pulley against time.
+    ``cutoff`` (Hz): also draw each series low-passed below it (raw kept, light).
     Returns the Figure."""
     driven = _driven(res)
     if not driven:
@@ -400,8 +470,8 @@ def drives(res: "Result") -> Any:
     power = res.drive_power_kw
     fig, (a1, a2) = _new((8, 6.5), rows=2)
     for j in driven:
-        a1.plot(res.time, torque[:, j] / 1e3, label=names[j])
-        a2.plot(res.time, power[:, j], label=names[j])
+        line = _series(a1, res, torque[:, j] / 1e3, names[j], cutoff)
+        _series(a2, res, power[:, j], names[j], cutoff, color=line.get_color())
     a1.set_ylabel("torque (kN·m)")
     a1.set_title("Drive torque (+ driving the belt along its direction of travel)")
     a2.set_ylabel("power (kW)")
@@ -410,16 +480,16 @@ def drives(res: "Result") -> Any:
     for a in (a1, a2):
         a.axhline(0, color="grey", lw=0.8)
         a.grid(True, alpha=0.4)
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     return fig
 
 
-def slip_margin(res: "Result") -> Any:
+def slip_margin(res: "Result", cutoff: Optional[float] = None) -> Any:
     """Capstan utilisation of every driven or braked pulley with friction against time:
     (T1 - T2)/(T2·(e^{µs·θ} - 1)), 1 at the Euler–Eytelwein slip limit
     (:meth:`beltrs.Result.capstan`), with the tension ratio T1/T2 against e^{µs·θ} below.
-    Returns the Figure."""
+    ``cutoff`` (Hz): also draw each series low-passed below it. Returns the Figure."""
     cap = res.capstan()
     names = _names(res)
     loaded = [j for j in range(len(names)) if cap.friction[j] > 0 and (
@@ -428,20 +498,22 @@ def slip_margin(res: "Result") -> Any:
         raise _beltrs.BeltrsError("slip_margin: no driven or braked pulley has friction")
     fig, (a1, a2) = _new((8, 6.5), rows=2)
     for j in loaded:
-        line, = a1.plot(res.time, cap.utilisation[:, j], label=names[j])
-        a2.plot(res.time, cap.tight[:, j] / cap.slack[:, j], color=line.get_color(), label=f"{names[j]}: T1/T2")
-        a2.plot(res.time, np.exp(cap.friction[j] * cap.wrap[:, j]), color=line.get_color(), ls="--",
+        line = _series(a1, res, cap.utilisation[:, j], names[j], cutoff)
+        color = line.get_color()
+        _series(a2, res, cap.tight[:, j] / cap.slack[:, j], f"{names[j]}: T1/T2", cutoff, color=color)
+        a2.plot(res.time, np.exp(cap.friction[j] * cap.wrap[:, j]), color=color, ls="--", lw=1,
                 label=f"{names[j]}: e^(µs·θ), µs = {cap.friction[j]:g}")
     a1.axhline(1.0, color="crimson", lw=1, ls="--", label="slip limit")
     a1.set_ylim(bottom=0)
     a1.set_ylabel("utilisation (1)")
     a1.set_title("Slip margin: capstan utilisation (T1 − T2) / (T2·(e^(µs·θ) − 1))")
+    a2.set_ylim(bottom=1)
     a2.set_ylabel("tension ratio (1)")
-    a2.set_title("Tension ratio against the capstan limit")
+    a2.set_title("Tension ratio T1/T2 against the capstan limit")
     a2.set_xlabel("time (s)")
     for a in (a1, a2):
         a.grid(True, alpha=0.4)
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     return fig
 
@@ -450,19 +522,24 @@ def slip_margin(res: "Result") -> Any:
 FIGURES = {"waterfall": waterfall, "envelope": envelope, "takeup": takeup, "drives": drives, "slip": slip_margin}
 
 
-def plot_result(res: "Result", out_dir: Union[str, Path], stem: str = "result") -> list[Path]:
+def plot_result(res: "Result", out_dir: Union[str, Path], stem: str = "result",
+                cutoff: Optional[float] = None) -> list[Path]:
     """Write the figures of ``beltrs plot`` for ``res`` into ``out_dir`` as PNGs and return
     their paths: ``STEM_waterfall.png`` (:func:`waterfall`), ``STEM_envelope.png``
     (:func:`envelope`), ``STEM_takeup.png`` (:func:`takeup`), ``STEM_drives.png``
     (:func:`drives`) and ``STEM_slip.png`` (:func:`slip_margin`). A figure whose data the
-    result lacks (no tension recorded, no takeup, no drive, no friction) is skipped."""
+    result lacks (no tension recorded, no takeup, no drive, no friction) is skipped.
+    ``cutoff`` (Hz) is passed to every figure but the takeup's (a low-passed series is
+    drawn over the raw one, its band named)."""
     plt = _pyplot()
     out_dir = Path(out_dir)
     written: list[Path] = []
     for name, draw in FIGURES.items():
         try:
-            fig = draw(res)
-        except _beltrs.BeltrsError:
+            fig = draw(res) if draw is takeup else draw(res, cutoff)
+        except _beltrs.BeltrsError as err:
+            if str(err).startswith("cutoff"):
+                raise
             continue
         path = out_dir / f"{stem}_{name}.png"
         fig.savefig(path, dpi=100)

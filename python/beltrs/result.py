@@ -236,14 +236,15 @@ class Result:
 
     # --- engineering views: signs along the belt's direction of travel ------------------
     # The engine's pulley quantities are counter-clockwise positive. These views turn them
-    # into what a conveyor engineer reads: speeds along the direction of travel (node
-    # order, the belt's path direction), drive torque positive when it drives the belt
-    # forward, power in kW positive when the drive delivers it, takeup travel from the
-    # start of the run, and the capstan utilisation of each pulley. Each is computed from
-    # the recorded arrays and three per-pulley constants that every Result of
-    # Simulation.run carries in its metadata: ``pulley_radius`` (m), ``pulley_travel_sign``
-    # (+1 where the belt wraps counter-clockwise in node order, -1 clockwise) and
-    # ``pulley_friction_static`` (mu_s, 0 without friction).
+    # into what a conveyor engineer reads: speeds along the belt's direction of travel,
+    # drive torque positive when it drives the belt that way, power in kW positive when the
+    # drive delivers it, takeup travel from the start of the run, and the capstan
+    # utilisation of each pulley. Each is computed from the recorded arrays and constants
+    # that every Result of Simulation.run carries in its metadata: ``pulley_radius`` (m),
+    # ``pulley_wrap_sign`` (+1 where the belt wraps counter-clockwise in node order, -1
+    # clockwise), ``pulley_friction_static`` (mu_s, 0 without friction) and
+    # ``travel_direction`` (+1: the belt travels in node order, -1: against it, 0: not
+    # known from the scene, then taken from the run).
 
     def _pulley_constant(self, key: str, what: str) -> np.ndarray:
         value = self.metadata.get(key)
@@ -260,30 +261,10 @@ class Result:
             )
         return value
 
-    @property
-    def surface_speed(self) -> np.ndarray:
-        """``[n, P]`` surface speed of each pulley along the belt's direction of travel, m/s:
-        ``pulley_travel_sign * pulley_speed * pulley_radius``. Positive when the pulley turns
-        the way the belt runs in node order; at a drive it is the belt speed there (plus
-        creep, docs/belt-drives.md)."""
-        sign = self._pulley_constant("pulley_travel_sign", "surface_speed")
-        radius = self._pulley_constant("pulley_radius", "surface_speed")
-        return self.pulley_speed * (sign * radius)
-
-    @property
-    def belt_speed(self) -> np.ndarray:
-        """``[n]`` mean speed of the belt along its direction of travel, m/s: each element's
-        mean node velocity projected on the element (node e to e + 1), averaged over the
-        belt weighted by the rest lengths. Needs ``node_position`` and ``node_velocity``.
-
-        Raises:
-            beltrs.BeltrsError: node positions or velocities were not recorded.
-        """
+    def _node_order_speed(self) -> Optional[np.ndarray]:
+        """``[n]`` mean belt speed in node order, m/s (None without node velocities)."""
         if self.node_position is None or self.node_velocity is None:
-            raise _beltrs.BeltrsError(
-                "belt_speed: needs node_position and node_velocity (recorded by default; use "
-                "surface_speed for the speed at each pulley)"
-            )
+            return None
         x, v = self.node_position, self.node_velocity
         chord = np.roll(x, -1, axis=1) - x
         length = np.linalg.norm(chord, axis=2)
@@ -293,11 +274,64 @@ class Result:
         return (along * weight).sum(axis=-1) / weight.sum(axis=-1)
 
     @property
+    def travel_direction(self) -> int:
+        """+1 if the belt's direction of travel is node order, -1 if against it.
+
+        From the scene when it says (``metadata["travel_direction"]``, set by
+        :meth:`beltrs.Simulation.run`: the direction the loads carry material, loading
+        point to discharge point, else the direction the speed-controlled drives' starting
+        curves run the belt); otherwise the direction the belt ran fastest in this run (its
+        mean speed in node order, or the pulleys' surface speeds without node velocities);
+        +1 if it never moved."""
+        given = self.metadata.get("travel_direction")
+        if given in (1, -1):
+            return int(given)
+        speed = self._node_order_speed()
+        if speed is None:
+            wrap = self._pulley_constant("pulley_wrap_sign", "travel_direction")
+            radius = self._pulley_constant("pulley_radius", "travel_direction")
+            surface = self.pulley_speed * (wrap * radius)
+            speed = surface.ravel()
+        if speed.size == 0 or not np.any(speed != 0):
+            return 1
+        return 1 if speed.ravel()[int(np.argmax(np.abs(speed.ravel())))] > 0 else -1
+
+    def _travel_sign(self, what: str) -> np.ndarray:
+        """``[P]`` the sign that turns a counter-clockwise-positive pulley quantity into one
+        along the belt's direction of travel."""
+        return self._pulley_constant("pulley_wrap_sign", what) * self.travel_direction
+
+    @property
+    def surface_speed(self) -> np.ndarray:
+        """``[n, P]`` surface speed of each pulley along the belt's direction of travel, m/s
+        (counter-clockwise ``pulley_speed`` times radius, signed by the wrap and
+        :attr:`travel_direction`). At a drive it is the belt speed there (plus creep,
+        docs/belt-drives.md)."""
+        return self.pulley_speed * (self._travel_sign("surface_speed") * self._pulley_constant(
+            "pulley_radius", "surface_speed"))
+
+    @property
+    def belt_speed(self) -> np.ndarray:
+        """``[n]`` mean speed of the belt along its direction of travel, m/s: each element's
+        mean node velocity projected on the element, averaged over the belt weighted by the
+        rest lengths. Needs ``node_position`` and ``node_velocity``.
+
+        Raises:
+            beltrs.BeltrsError: node positions or velocities were not recorded.
+        """
+        speed = self._node_order_speed()
+        if speed is None:
+            raise _beltrs.BeltrsError(
+                "belt_speed: needs node_position and node_velocity (recorded by default; use "
+                "surface_speed for the speed at each pulley)"
+            )
+        return speed * self.travel_direction
+
+    @property
     def driving_torque(self) -> np.ndarray:
         """``[n, P]`` drive torque, N*m, positive when it drives the belt along its direction
-        of travel (negative when it holds the belt back, e.g. regenerating on a decline):
-        ``pulley_travel_sign * drive_torque``."""
-        return self.drive_torque * self._pulley_constant("pulley_travel_sign", "driving_torque")
+        of travel (negative when it holds the belt back, e.g. regenerating on a decline)."""
+        return self.drive_torque * self._travel_sign("driving_torque")
 
     @property
     def drive_power_kw(self) -> np.ndarray:
@@ -347,7 +381,7 @@ class Result:
         if self.tension is None or self.node_position is None:
             raise _beltrs.BeltrsError("capstan: needs the tension and node_position channels (recorded by default)")
         radius = self._pulley_constant("pulley_radius", "capstan")
-        sign = self._pulley_constant("pulley_travel_sign", "capstan")
+        sign = self._pulley_constant("pulley_wrap_sign", "capstan")
         count = len(radius)
         if friction is None:
             mu = self._pulley_constant("pulley_friction_static", "capstan")

@@ -5,8 +5,8 @@ mod roots;
 
 use crate::error::{BeltError, BeltResult};
 use crate::scene::PulleySpec;
-use roots::{bisect_replayed, chord_bracket, illinois};
 use nalgebra::Vector2;
+use roots::{bisect_replayed, chord_bracket, illinois};
 use std::f64::consts::TAU;
 
 /// One piece of the belt path.

@@ -100,7 +100,11 @@ pub(super) fn illinois(
 /// Bracket the crossing of `gap` (distance from the point at `s0`, minus `chord`) past `s0`:
 /// the arc is at least the chord, so start at `s0 + chord` and step by a quarter chord up to
 /// `s0 + 4·chord`. Returns `(lo, gap(lo), hi, gap(hi))`, `gap(hi) ≥ 0` unless none was found.
-pub(super) fn chord_bracket(s0: f64, chord: f64, gap: &impl Fn(f64) -> f64) -> (f64, f64, f64, f64) {
+pub(super) fn chord_bracket(
+    s0: f64,
+    chord: f64,
+    gap: &impl Fn(f64) -> f64,
+) -> (f64, f64, f64, f64) {
     let (mut lo, mut glo) = (s0, -chord);
     let mut hi = s0 + chord;
     let mut ghi = gap(hi);

@@ -6,25 +6,23 @@ mod functions;
 mod scene;
 mod shared;
 
-use crate::error::{BeltError, BeltResult};
+use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
 use crate::simulation::Simulation;
 use crate::{Relaxation, StabiliseOptions};
-use numpy::{PyArray1, PyArrayMethods};
-use pyo3::create_exception;
-use pyo3::exceptions::PyException;
-use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use call::{
     guarded, interruptible, interruptible_with_progress, to_py, BeltrsError, CheckpointError,
     DivergenceError, SceneError, TimeStepError,
 };
-use functions::{check_scene, check_scene_table, scene_defaults, start_curve_eval, unknown_key_rule};
+use functions::{
+    check_scene, check_scene_table, scene_defaults, start_curve_eval, unknown_key_rule,
+};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use shared::{Guard, Shared};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, PoisonError};
 
 fn array<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
     let a = PyArray1::from_slice(py, data);
