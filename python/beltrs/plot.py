@@ -375,12 +375,11 @@ def waterfall(res: "Result", cutoff: Optional[float] = None) -> Any:
     fig.colorbar(mesh, ax=ax, label="tension (kN)")
     _mark_pulleys(ax, _pulley_arcs(res), _route_length(res), shade=False, color="white")
     k = _peak(kn)
-    ax.plot(dist[k[1]], res.time[k[0]], "v", color="crimson", mec="white", ms=10,
-            label=f"peak {kn[k]:.1f} kN at t = {res.time[k[0]]:.2f} s, {dist[k[1]]:.1f} m")
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    ax.plot(dist[k[1]], res.time[k[0]], "v", color="crimson", mec="white", ms=10)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("time (s)")
-    ax.set_title("Tension waterfall (dashed: where the belt meets and leaves each pulley)", pad=14)
+    ax.set_title("Tension waterfall (dashed: where the belt meets and leaves each pulley)\n"
+                 f"peak (red marker) {kn[k]:.1f} kN at t = {res.time[k[0]]:.2f} s, {dist[k[1]]:.1f} m", pad=14)
     fig.tight_layout()
     return fig
 
