@@ -398,9 +398,8 @@ class Result:
         tight, slack, wrap = (np.full((n, count), np.nan) for _ in range(3))
         x = self.node_position
         for j in range(count):
-            inside = np.linalg.norm(x - self.pulley_position[:, j, None, :], axis=2) < radius[j]
-            for k in range(n):
-                arc = _longest_arc(inside[k])
+            for k in range(n):  # one instant at a time: [n, E] temporaries would not fit a long run
+                arc = _longest_arc(np.hypot(*(x[k] - self.pulley_position[k, j]).T) < radius[j])
                 if arc is None:
                     continue
                 first, last = arc
