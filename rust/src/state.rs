@@ -1,5 +1,6 @@
 //! The mutable state of a run: plain arrays that can be copied, saved and restored.
 
+use crate::drives::controller::DriveMemory;
 use crate::loads::LoadEdges;
 use crate::model::Model;
 use nalgebra::Vector2;
@@ -55,6 +56,9 @@ pub struct State {
     pub node_mass: Vec<f64>,
     /// Where each load's zone is (`crate::loads`).
     pub load_edges: Vec<LoadEdges>,
+    /// Memory of each pulley's PI speed controller (error integral, lagged torque; zero
+    /// for pulleys without one).
+    pub drive_memory: Vec<DriveMemory>,
 }
 
 impl State {
@@ -87,6 +91,7 @@ impl State {
             drive_work: 0.0,
             node_mass,
             load_edges,
+            drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
         }
     }
 

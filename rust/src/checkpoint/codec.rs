@@ -2,6 +2,7 @@
 //! reader (every length checked against the bytes left before anything is allocated), and
 //! the scene and state in the order of the format (`super`'s module docs).
 
+use crate::drives::controller::DriveMemory;
 use crate::loads::LoadEdges;
 use crate::scene::Scene;
 use crate::state::{ContactWindow, State};
@@ -145,6 +146,13 @@ pub(super) fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    // Added within version 4: files written before it end here (read as zero memory).
+    w.u64(s.drive_memory.len() as u64);
+    for c in &s.drive_memory {
+        w.f64(c.integral);
+        w.f64(c.torque);
+        w.f64(c.motor_speed);
+    }
 }
 
 pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -189,6 +197,21 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    // Controller memory (added within version 4; absent from older files: zero).
+    let drive_memory = if r.pos < r.bytes.len() {
+        let n = r.len("drive memories", 24)?;
+        (0..n)
+            .map(|_| {
+                Ok(DriveMemory {
+                    integral: r.f64("drive memory")?,
+                    torque: r.f64("drive memory")?,
+                    motor_speed: r.f64("drive memory")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?
+    } else {
+        vec![DriveMemory::default(); pulley_omega.len()]
+    };
     Ok(State {
         time,
         step,
@@ -204,5 +227,6 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        drive_memory,
     })
 }

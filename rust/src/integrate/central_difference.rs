@@ -217,6 +217,10 @@ impl Simulation {
                 Rigid::Idler(_) => check += new,
             }
         }
+        if m.has_drive_memory {
+            crate::drives::controller::advance_all(m, s, sc, drift);
+            crate::drives::motor::advance_all(m, s, sc, kick);
+        }
         check
     }
 
