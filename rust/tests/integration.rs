@@ -19,3 +19,4 @@ mod run_contract;
 mod scene_schema;
 mod speed_control;
 mod speed_drive;
+mod stops;

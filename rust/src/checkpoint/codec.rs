@@ -153,6 +153,8 @@ pub(super) fn write_state(w: &mut Writer, s: &State) {
         w.f64(c.torque);
         w.f64(c.motor_speed);
     }
+    // Added within version 4 after the drive memory: older files end before it.
+    w.f64s(&s.brake_ramp);
 }
 
 pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -212,6 +214,12 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         vec![DriveMemory::default(); pulley_omega.len()]
     };
+    // Added within version 4 after the drive memory (absent from older files: none begun).
+    let brake_ramp = if r.pos < r.bytes.len() {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     Ok(State {
         time,
         step,
@@ -228,5 +236,6 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         node_mass,
         load_edges,
         drive_memory,
+        brake_ramp,
     })
 }

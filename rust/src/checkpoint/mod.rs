@@ -24,9 +24,11 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates), and the memory of each
+//! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a file that ends before it reads as zero memory). Strings, byte strings and
+//! within version 4, so a file that ends before it reads as zero memory), and the speed at
+//! which each pulley's deceleration brake began its ramp (added within version 4 after the
+//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
@@ -221,6 +223,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
+        ("brake ramps", s.brake_ramp.len(), p),
     ];
     for (what, have, want) in sizes {
         if have != want {
