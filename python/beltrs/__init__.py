@@ -5,7 +5,7 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, conveyor, design_start, scenes, statics, study
+from . import analysis, analytic, conveyor, design_start, plot, scenes, statics, study
 from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
@@ -61,6 +61,7 @@ __all__ = [
     "design_start",
     "load_result",
     "load_scene",
+    "plot",
     "scenes",
     "statics",
     "study",

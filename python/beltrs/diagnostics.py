@@ -188,7 +188,8 @@ def _distance_to_path(points: np.ndarray, path: np.ndarray) -> np.ndarray:
     len2 = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300)
     out = np.empty(len(points))
     for k, p in enumerate(points):
-        t = np.clip(np.einsum("ij,ij->i", p - a, ab) / len2, 0.0, 1.0)
+        with np.errstate(over="ignore"):  # a very short element far from p: t clips to 0 or 1
+            t = np.clip(np.einsum("ij,ij->i", p - a, ab) / len2, 0.0, 1.0)
         nearest = a + t[:, None] * ab
         out[k] = float(np.min(np.hypot(*(p - nearest).T)))
     return out
@@ -216,7 +217,8 @@ def check_idlers(sim: "Simulation") -> None:
     b = np.concatenate([path[(tracked + d + 1) % n] for d in (-1, 0, 1)])
     p = np.tile(centres, (3, 1))
     ab = b - a
-    t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
+    with np.errstate(over="ignore"):  # a very short element far from p: t clips to 0 or 1
+        t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
     near = np.hypot(*(p - (a + t[:, None] * ab)).T).reshape(3, -1).min(axis=0)
     gap = near - radii
     candidates = np.flatnonzero(gap > IDLER_GAP_LIMIT)

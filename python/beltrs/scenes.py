@@ -305,8 +305,9 @@ def guo_wang_conveyor(
 
     - Belt: steel cord ST1250, EA = 80 MN (elongation about 0.16 % at 10 % of the rated
       1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
-      critical, elements of ``element_length`` m (0.3: a quarter of the carry pitch, so the
-      polygonal belt does not rattle on the rolls; docs/stability.md).
+      critical, elements of ``element_length`` m (default 0.2: a sixth of the 1.2 m carry
+      pitch, so the polygonal belt does not rattle on the rolls, docs/stability.md, and
+      30 degrees of wrap per element on the 0.8 m drum).
     - Layout: tail pulley ("tail", radius 0.4 m, 500 kg) at (0, 0) on a horizontal
       gravity takeup pulled in -x with 2 x ``takeup_tension`` (default 50 kN per strand, a
       10.2 t counterweight over a sheave), chosen so that the slack side keeps the head
@@ -332,7 +333,7 @@ def guo_wang_conveyor(
             a positive value is converted to the clockwise (negative) sense of this
             layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
         length: centre distance, m. Default 972 (shorter conveyors for quick studies).
-        element_length: target element length, m. Default 0.3.
+        element_length: target element length, m. Default 0.2.
         elements: belt elements; overrides ``element_length`` (for
             :func:`beltrs.study.accuracy_cost`). Default None.
         material: kg per metre of belt on the carry strand. Default 55.6.
