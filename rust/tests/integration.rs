@@ -17,3 +17,4 @@ mod rkf45;
 mod run_contract;
 mod scene_schema;
 mod speed_drive;
+mod wrap_contact;

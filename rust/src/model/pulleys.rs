@@ -75,6 +75,7 @@ impl PulleyModel {
 /// reaches one element beyond the radius.
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
     let element_mass = scene.belt.mass_per_length * l0;
+    let wrap = scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     scene
         .pulleys
         .iter()
@@ -113,7 +114,9 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 }),
                 drive: p.drive.clone(),
                 brake: p.brake.clone(),
-                window_margin: l0,
+                // Wrap contact: one and a half elements, so that an element that can reach the
+                // circle has both nodes in the window, stretched or not.
+                window_margin: if wrap { 1.5 * l0 } else { l0 },
             }
         })
         .collect()

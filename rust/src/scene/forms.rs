@@ -5,7 +5,7 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, Table, Wrap};
+use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, PulleyContact, Table, Wrap};
 use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -86,6 +86,20 @@ impl Named for Formulation {
     }
 }
 named_serde!(Formulation);
+
+impl Named for PulleyContact {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (PulleyContact::Nodes, "nodes"),
+        (PulleyContact::Wrap, "wrap"),
+    ];
+    fn expected() -> String {
+        "\"nodes\" or \"wrap\"".into()
+    }
+    fn unknown(_: &str) -> String {
+        format!("unknown pulley contact (known: {})", Self::expected())
+    }
+}
+named_serde!(PulleyContact);
 
 impl Named for Wrap {
     const NAMES: &'static [(Self, &'static str)] =
