@@ -222,14 +222,19 @@ fn belt_on_its_path_is_in_equilibrium_wherever_its_nodes_are() {
             &mut tension,
             &mut out,
         );
-        // Every interior node in equilibrium (to the rounding of the node positions, whose
-        // error times k ~ 1e-16·0.4·4e8 ~ 1e-8 N, and arc nodes a hair off the circle).
+        // Every interior node in equilibrium, except for the radial cap (wrap::apply_wrap):
+        // a strand node within 4T/k of a tangent point is pulled in as a penalty spring
+        // would push, not along the exact tangent line, an error of at most T²/(k·r)
+        // (40 N here, 1e-3·T); every other node to rounding.
+        let cap = t * t / (body.stiffness * R);
         for (i, f) in force.iter().enumerate().take(nodes - 1).skip(1) {
-            assert!(f.norm() < 1e-3 * t * 1e-3, "step {step}, node {i}: {f:?}");
+            let near_tangent = x[i].x.abs() < 4.0 * t / body.stiffness && x[i].x <= 0.0;
+            let bound = if near_tangent { 1.01 * cap } else { 1e-3 };
+            assert!(f.norm() < bound, "step {step}, node {i}: {f:?}");
         }
-        // The pulley holds both strands: T along each, pointing away from it.
+        // The pulley holds both strands: T along each, pointing away from it (less the cap).
         let expect = V2::new(-2.0 * t, 0.0);
-        assert!((on - expect).norm() < 1e-6 * t, "step {step}: {on:?}");
+        assert!((on - expect).norm() < 1e-6 * t + 2.0 * cap, "step {step}: {on:?}");
         // The friction solve sees T·π of normal load (the capstan's ∫T dφ), whatever the
         // phase of the nodes, on nodes next to or on the arc.
         let load: f64 = out.normal_force.iter().sum();
