@@ -234,7 +234,10 @@ fn belt_on_its_path_is_in_equilibrium_wherever_its_nodes_are() {
         }
         // The pulley holds both strands: T along each, pointing away from it (less the cap).
         let expect = V2::new(-2.0 * t, 0.0);
-        assert!((on - expect).norm() < 1e-6 * t + 2.0 * cap, "step {step}: {on:?}");
+        assert!(
+            (on - expect).norm() < 1e-6 * t + 2.0 * cap,
+            "step {step}: {on:?}"
+        );
         // The friction solve sees T·π of normal load (the capstan's ∫T dφ), whatever the
         // phase of the nodes, on nodes next to or on the arc.
         let load: f64 = out.normal_force.iter().sum();
