@@ -24,9 +24,13 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--wrap-only", action="store_true", help="only the wrap/nodes comparison")
     args = ap.parse_args(argv)
     r = args.repeats
     q = args.quick
+    if args.wrap_only:
+        wrap_cost(r, q)
+        return 0
     rows = [
         ("1 case H frictionless", bench.bench_case_h(None, 5000 if q else 20000, r)),
         ("1 case H friction", bench.bench_case_h(bench.FRICTION, 5000 if q else 20000, r)),

@@ -126,7 +126,7 @@ pub fn wrap(p: V2, q: V2, c: V2, r: f64) -> Option<Wrap> {
         return None;
     }
     let length = tangent_p + r * angle + tangent_q;
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return None;
     }
     Some(Wrap {
