@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Load, Pulley, Recording, Scene, SceneError, Solver,
                     StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
@@ -24,7 +24,12 @@ TABLES = {
     "takeup": Takeup,
     "drive": Drive,
     "start_curve": StartCurve,
+    "controller": beltrs.SpeedController,
+    "follow": beltrs.TorqueFollow,
+    "motor": beltrs.Motor,
+    "coupling": beltrs.FluidCoupling,
     "brake": Brake,
+    "holdback": Holdback,
     "idler": Idler,
     "load": Load,
     "solver": Solver,

@@ -13,7 +13,9 @@ from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
 from .result import Result, load_result
-from .scene import Belt, Brake, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
+from .scene import (Belt, Brake, Drive, Friction, Holdback, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve,
+                    Takeup)
+from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 
@@ -29,11 +31,14 @@ __all__ = [
     "DivergenceError",
     "DriveDirectionWarning",
     "Drive",
+    "FluidCoupling",
     "Friction",
+    "Holdback",
     "Idler",
     "IdlerContactWarning",
     "Load",
     "Model",
+    "Motor",
     "NotRelaxedWarning",
     "Pulley",
     "Recording",
@@ -42,9 +47,11 @@ __all__ = [
     "SceneError",
     "Simulation",
     "Solver",
+    "SpeedController",
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "TorqueFollow",
     "UndampedContactWarning",
     "__version__",
     "analysis",

@@ -24,7 +24,11 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates). Strings, byte strings and
+//! element, end element, start and end material coordinates), the memory of each
+//! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
+//! within version 4, so a file that ends before it reads as zero memory), and the speed at
+//! which each pulley's deceleration brake began its ramp (added within version 4 after the
+//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
 //! arrays are a `u64` length followed by the items.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
@@ -39,6 +43,7 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
+use crate::drives::controller::DriveMemory;
 use crate::error::{BeltError, BeltResult};
 use crate::loads::LoadEdges;
 use crate::model::Model;
@@ -210,6 +215,8 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        ("drive memories", s.drive_memory.len(), p),
+        ("brake ramps", s.brake_ramp.len(), p),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -562,6 +569,15 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    // Added within version 4: files written before it end here (read as zero memory).
+    w.u64(s.drive_memory.len() as u64);
+    for c in &s.drive_memory {
+        w.f64(c.integral);
+        w.f64(c.torque);
+        w.f64(c.motor_speed);
+    }
+    // Added within version 4 after the drive memory: older files end before it.
+    w.f64s(&s.brake_ramp);
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -606,6 +622,27 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    // Controller memory (added within version 4; absent from older files: zero).
+    let drive_memory = if r.pos < r.bytes.len() {
+        let n = r.len("drive memories", 24)?;
+        (0..n)
+            .map(|_| {
+                Ok(DriveMemory {
+                    integral: r.f64("drive memory")?,
+                    torque: r.f64("drive memory")?,
+                    motor_speed: r.f64("drive memory")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?
+    } else {
+        vec![DriveMemory::default(); pulley_omega.len()]
+    };
+    // Added within version 4 after the drive memory (absent from older files: none begun).
+    let brake_ramp = if r.pos < r.bytes.len() {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     Ok(State {
         time,
         step,
@@ -621,6 +658,8 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        drive_memory,
+        brake_ramp,
     })
 }
 

@@ -5,6 +5,8 @@
 //! then moves the state with them.
 
 use crate::contact::{IdlerContact, PulleyContacts};
+use crate::drives::controller::ControlOutput;
+use crate::drives::motor::MotorOutput;
 use crate::friction::{FrictionOutcome, StickScratch};
 use crate::integrate::Inertia;
 use crate::model::{Model, Stage, TakeupModel};
@@ -70,7 +72,7 @@ pub struct Scratch {
     pub friction: Vec<FrictionOutcome>,
     /// Drive torque on each pulley, N·m.
     pub drive_torque: Vec<f64>,
-    /// Brake torque on each pulley, N·m.
+    /// Brake torque on each pulley (brake and holdback), N·m.
     pub brake_torque: Vec<f64>,
     /// Bearing drag torque on each pulley, N·m (−b·ω).
     pub bearing_torque: Vec<f64>,
@@ -85,6 +87,10 @@ pub struct Scratch {
     /// Running-resistance force of each idler on the belt, N, along the contact tangent
     /// (the belt receives −f·t; 0 when the idler has none or is not touched).
     pub idler_resistance: Vec<f64>,
+    /// What each pulley's PI speed controller decided (`crate::drives::controller`).
+    pub control: Vec<ControlOutput>,
+    /// What each pulley's DOL motor did (`crate::drives::motor`).
+    pub motor: Vec<MotorOutput>,
 }
 
 impl Scratch {
@@ -122,6 +128,8 @@ impl Scratch {
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
+            control: vec![ControlOutput::default(); p],
+            motor: vec![MotorOutput::default(); p],
         }
     }
 
@@ -199,11 +207,14 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::IdlerContact => crate::contact::stage::idler_contact(cx),
             Stage::RunningResistance => crate::friction::stage::running_resistance(cx),
             Stage::Drives => crate::drives::torque::torque_drives(cx),
+            Stage::Motors => crate::drives::motor::motors(cx),
+            Stage::SpeedControl => crate::drives::controller::speed_control(cx),
             Stage::BearingDrag => crate::drives::bearing::bearing_drag(cx),
             Stage::PulleyFriction => crate::friction::stage::pulley_friction(cx),
             Stage::IdlerFriction => crate::friction::stage::idler_friction(cx),
             Stage::SpeedDrives => crate::drives::hold::speed_drives(cx),
-            Stage::Brakes => crate::drives::hold::brakes(cx),
+            Stage::Brakes => crate::drives::brake::brakes(cx),
+            Stage::Holdbacks => crate::drives::holdback::holdbacks(cx),
         }
         if let (Some(t0), Some(profile)) = (started, profile.as_mut()) {
             profile[k] += t0.elapsed().as_secs_f64();

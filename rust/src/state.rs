@@ -1,5 +1,6 @@
 //! The mutable state of a run: plain arrays that can be copied, saved and restored.
 
+use crate::drives::controller::DriveMemory;
 use crate::loads::LoadEdges;
 use crate::model::Model;
 use nalgebra::Vector2;
@@ -55,6 +56,13 @@ pub struct State {
     pub node_mass: Vec<f64>,
     /// Where each load's zone is (`crate::loads`).
     pub load_edges: Vec<LoadEdges>,
+    /// Speed at which each pulley's deceleration brake began its ramp, rad/s (the pulley's
+    /// speed in the first step from its `applied` time); 0 before, and for other pulleys
+    /// (`crate::drives::brake`).
+    pub brake_ramp: Vec<f64>,
+    /// Memory of each pulley's PI speed controller (error integral, lagged torque; zero
+    /// for pulleys without one).
+    pub drive_memory: Vec<DriveMemory>,
 }
 
 impl State {
@@ -87,6 +95,8 @@ impl State {
             drive_work: 0.0,
             node_mass,
             load_edges,
+            brake_ramp: vec![0.0; model.pulleys.len()],
+            drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
         }
     }
 

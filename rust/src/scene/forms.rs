@@ -5,7 +5,12 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, PulleyContact, Table, Wrap};
+use super::{
+    BrakeSpec, DriveSpec, Formulation, FrictionModel, PulleyContact, Table, TakeupKind, Wrap,
+};
+use crate::drives::controller::SpeedController;
+use crate::drives::motor::Motor;
+use crate::drives::sharing::TorqueFollow;
 use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -125,6 +130,18 @@ impl Named for StartShape {
     }
 }
 named_serde!(StartShape);
+
+impl Named for TakeupKind {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (TakeupKind::Gravity, "gravity"),
+        (TakeupKind::Fixed, "fixed"),
+        (TakeupKind::Winch, "winch"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name("takeup kind", name, &["gravity", "fixed", "winch"])
+    }
+}
+named_serde!(TakeupKind);
 
 /// The friction model named in a scene's `friction` table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -337,6 +354,16 @@ pub struct DriveKeys {
     pub start_curve: Option<StartCurve>,
     /// Torque limit of a speed-controlled drive, N·m.
     pub max_torque: f64,
+    /// PI speed controller.
+    pub controller: Option<SpeedController>,
+    /// Torque follower of another drive.
+    pub follow: Option<TorqueFollow>,
+    /// DOL induction motor.
+    pub motor: Option<Motor>,
+    /// Flywheel on the high-speed shaft, kg·m².
+    pub flywheel: f64,
+    /// Time the motor loses power, s.
+    pub power_off: Option<f64>,
 }
 
 impl Default for DriveKeys {
@@ -358,6 +385,11 @@ impl From<DriveSpec> for DriveKeys {
             inertia: d.inertia,
             start_curve: d.start_curve,
             max_torque: d.max_torque,
+            controller: d.controller,
+            follow: d.follow,
+            motor: d.motor,
+            flywheel: d.flywheel,
+            power_off: d.power_off,
         }
     }
 }
@@ -374,6 +406,11 @@ impl TryFrom<DriveKeys> for DriveSpec {
             inertia: k.inertia,
             start_curve: k.start_curve,
             max_torque: k.max_torque,
+            controller: k.controller,
+            follow: k.follow,
+            motor: k.motor,
+            flywheel: k.flywheel,
+            power_off: k.power_off,
         })
     }
 }
@@ -386,6 +423,14 @@ pub struct BrakeKeys {
     pub time: Option<Numbers>,
     /// Capacity, N·m, ≥ 0.
     pub capacity: Option<Numbers>,
+    /// Braking torque from `applied` on, N·m.
+    pub torque: Option<f64>,
+    /// Deceleration target, m/s².
+    pub deceleration: Option<f64>,
+    /// Time the brake is applied, s.
+    pub applied: f64,
+    /// Build-up time of the torque, s.
+    pub rise: f64,
 }
 
 impl Default for BrakeKeys {
@@ -397,7 +442,14 @@ impl Default for BrakeKeys {
 impl From<BrakeSpec> for BrakeKeys {
     fn from(b: BrakeSpec) -> Self {
         let (time, capacity) = columns(&b.capacity);
-        BrakeKeys { time, capacity }
+        BrakeKeys {
+            time,
+            capacity,
+            torque: b.torque,
+            deceleration: b.deceleration,
+            applied: b.applied,
+            rise: b.rise,
+        }
     }
 }
 
@@ -407,6 +459,10 @@ impl TryFrom<BrakeKeys> for BrakeSpec {
         Ok(BrakeSpec {
             capacity: table(("time", k.time), ("capacity", k.capacity))?
                 .unwrap_or_else(|| Table::constant(0.0)),
+            torque: k.torque,
+            deceleration: k.deceleration,
+            applied: k.applied,
+            rise: k.rise,
         })
     }
 }

@@ -58,12 +58,12 @@ impl DriveSpec {
             ));
         }
         let Some(curve) = &self.start_curve else {
-            if self.max_torque != f64::INFINITY {
+            if self.max_torque != f64::INFINITY && self.follow.is_none() {
                 // It would be silently ignored.
                 return Err(BeltError::invalid(
                     format!("{f}.max_torque"),
                     self.max_torque,
-                    format!("limits a speed-controlled drive only: give {f}.start_curve, or leave max_torque out"),
+                    format!("limits a speed-controlled drive only (or a torque follower): give {f}.start_curve or {f}.follow, or leave max_torque out"),
                 ));
             }
             return Ok(());
@@ -87,7 +87,7 @@ impl DriveSpec {
             return Err(BeltError::invalid(
                 format!("{pulley}.brake"),
                 "a brake",
-                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake: the drive holds the pulley itself (remove one of them)"),
+                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake that acts while the drive has power: the drive holds the pulley itself (remove one of them, or give the drive a power_off and the brake a torque applied no earlier)"),
             ));
         }
         Ok(())
@@ -161,7 +161,7 @@ pub(crate) fn check_finite(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
-fn check_positive(field: &str, value: f64) -> BeltResult<()> {
+pub(super) fn check_positive(field: &str, value: f64) -> BeltResult<()> {
     check_finite(field, value)?;
     if value > 0.0 {
         Ok(())
@@ -170,7 +170,7 @@ fn check_positive(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
-fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
+pub(super) fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
     check_finite(field, value)?;
     if value >= 0.0 {
         Ok(())
@@ -354,13 +354,19 @@ impl Scene {
                 }
                 check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
                 check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
-                d.validate_speed_control(&f, p.brake.is_some())?;
+                if let Some(off) = d.power_off {
+                    check_finite(&format!("{f}.drive.power_off"), off)?;
+                }
+                let holds_with = p.brake.is_some() && !super::stops::brake_after_power_off(p);
+                d.validate_speed_control(&f, holds_with)?;
             }
             if let Some(br) = &p.brake {
                 br.capacity
                     .validate(&format!("{f}.brake"), "time", "capacity", true)?;
             }
         }
+        crate::drives::sharing::validate(self)?;
+        super::stops::check_stops(self)?;
         for (i, d) in self.idlers.iter().enumerate() {
             let f = format!("idlers[{i}]");
             check_finite(&format!("{f}.center[0]"), d.center[0])?;
