@@ -253,6 +253,8 @@ def check_defaults(sim: "Simulation") -> None:
     belt = sim.scene.belt
     if belt.elements is not None or belt.max_element_angle != Belt.max_element_angle:
         return
+    if belt.pulley_contact == "wrap":  # no chord polygon on the pulleys: no chordal ripple
+        return
     drives = [
         j for j, p in enumerate(sim.scene.pulleys)
         if p.drive is not None and p.drive.start_curve is not None and p.drive.start_curve.speed
@@ -267,7 +269,8 @@ def check_defaults(sim: "Simulation") -> None:
         f"peaks then carry a chordal ripple at the node-passing frequency (case G: 20 % above the low-passed "
         f"peak at 30 degrees, docs/accuracy.md). Read peaks through beltrs.analysis.low_pass, or set "
         f"belt.max_element_angle = {RIPPLE_FREE_ANGLE:.3f} (7 degrees: raw peaks within about 5 %) or "
-        f"belt.elements explicitly.",
+        f"belt.elements explicitly, or use belt.pulley_contact = \"wrap\" (raw peaks within 3 %, "
+        f"docs/wrap-contact.md).",
     )
 
 

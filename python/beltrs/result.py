@@ -415,6 +415,60 @@ class Result:
             util = np.where(slack > 0, (tight - slack) / (slack * capacity), np.where(tight > slack, np.inf, 0.0))
         util[np.isnan(wrap) | (mu == 0)[None, :]] = np.nan
         return Capstan(tight=tight, slack=slack, wrap=wrap, friction=mu, utilisation=util)
+    def lowpass(self, channel: str, cutoff: float) -> np.ndarray:
+        """A recorded channel with everything above ``cutoff`` Hz removed (zero phase, along
+        ``time``; :func:`beltrs.analysis.low_pass` on a uniform grid of the run's sample
+        spacing, then back onto ``time``), same shape and unit as the channel.
+
+        The raw channels are the model's answer and carry no filter. A low-pass is a
+        measurement band chosen on purpose: e.g. the tension a load cell of 2 Hz bandwidth
+        reads (``res.lowpass("tension", 2.0)``), or the slow dynamics of a start without
+        the belt's higher modes. Tensions follow the belt's elements (material points);
+        for a fixed point use :func:`beltrs.analysis.tension_at` first.
+
+        Args:
+            channel: a recorded array channel with a ``time`` axis first (``"tension"``,
+                ``"drive_torque"``, ``"pulley_speed"``, ...).
+            cutoff: highest frequency kept, Hz, > 0 and below the Nyquist frequency of the
+                recording.
+
+        Raises:
+            beltrs.SceneError: unknown or unrecorded channel, a bad cutoff, or fewer than 3
+                samples.
+        """
+        from .analysis import low_pass
+
+        if channel not in DIMS or channel == "time" or DIMS[channel][0] != "time":
+            raise _beltrs.SceneError(f"channel = {channel!r}: not a recorded time series "
+                                     f"(known: {', '.join(n for n in DIMS if n != 'time')})")
+        data = getattr(self, channel)
+        if data is None:
+            raise _beltrs.SceneError(f"channel = {channel!r}: not recorded in this run")
+        t = np.asarray(self.time, dtype=float)
+        if len(t) < 3:
+            raise _beltrs.SceneError(f"lowpass: {len(t)} samples; need at least 3")
+        step = float(np.median(np.diff(t)))
+        if not (isinstance(cutoff, (int, float)) and not isinstance(cutoff, bool) and 0 < cutoff < 0.5 / step):
+            raise _beltrs.SceneError(f"cutoff = {cutoff!r}: must be a number of Hz > 0 and below the "
+                                     f"recording's Nyquist frequency {0.5 / step:g} Hz")
+        x = np.asarray(data, dtype=float)
+        flat = x.reshape(len(t), -1)
+        grid = np.linspace(t[0], t[-1], max(3, int(round((t[-1] - t[0]) / step)) + 1))
+        out = np.empty_like(flat)
+        for k in range(flat.shape[1]):
+            filtered = low_pass(np.interp(grid, t, flat[:, k]), float(grid[1] - grid[0]), float(cutoff))
+            out[:, k] = np.interp(t, grid, filtered)
+        return out.reshape(x.shape)
+
+    def tension_lowpass(self, cutoff: float) -> np.ndarray:
+        """``[n, E]`` element tensions below ``cutoff`` Hz, N (:meth:`lowpass` of
+        ``"tension"``)."""
+        return self.lowpass("tension", cutoff)
+
+    def drive_torque_lowpass(self, cutoff: float) -> np.ndarray:
+        """``[n, P]`` drive torques below ``cutoff`` Hz, N*m (:meth:`lowpass` of
+        ``"drive_torque"``)."""
+        return self.lowpass("drive_torque", cutoff)
 
     def arrays(self) -> dict[str, np.ndarray]:
         """Every recorded array channel by name (channels not recorded are absent)."""

@@ -665,6 +665,12 @@ class Belt(_Table):
             unit slip. Raise it for a pre-strained elastic drive belt (the belt-drive
             literature's benchmarks are pre-strained 5.26 %). Default 0.1.
         formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
+        pulley_contact: how the belt meets the pulleys: ``"nodes"`` (Hustrulid's nodal
+            penalty contact, thesis eq. 4.70-4.75; the belt round a pulley is a chord
+            polygon, with the chordal ripple of a chain on a sprocket on a held drum) or
+            ``"wrap"`` (elements on a pulley measured along their path round it, tangents
+            and arc: the strand leaves on the tangent, raw tension peaks without the ripple;
+            docs/wrap-contact.md). Default "nodes".
     """
 
     axial_stiffness: float
@@ -677,6 +683,7 @@ class Belt(_Table):
     tension_only: bool
     formulation: str
     max_placement_strain: float
+    pulley_contact: str
 
     def __post_init__(self) -> None:
         _normalise(self)

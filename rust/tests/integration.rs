@@ -20,3 +20,4 @@ mod scene_schema;
 mod speed_control;
 mod speed_drive;
 mod stops;
+mod wrap_contact;

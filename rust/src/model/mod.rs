@@ -64,6 +64,9 @@ pub struct Model {
     pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
+    /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
+    /// false: nodal contact.
+    pub wrap_contact: bool,
     /// Gravitational acceleration, m/s².
     pub gravity: f64,
     /// Pulleys.
@@ -189,6 +192,7 @@ impl Model {
             bending_stiffness: belt.bending_stiffness,
             uniform,
             tension_only: scene.belt.tension_only,
+            wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
             gravity: scene.gravity,
             dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()),
             pulleys,

@@ -91,6 +91,7 @@ impl PulleyModel {
 /// reaches one element beyond the radius.
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
     let element_mass = scene.belt.mass_per_length * l0;
+    let wrap = scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     let stop_time = scene.stop_time().unwrap_or(f64::INFINITY);
     scene
         .pulleys
@@ -150,7 +151,9 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 drive: p.drive.clone(),
                 brake: p.brake.clone(),
                 holdback: p.holdback.as_ref().map(Holdback::compile),
-                window_margin: l0,
+                // Wrap contact: one and a half elements, so that an element that can reach the
+                // circle has both nodes in the window, stretched or not.
+                window_margin: if wrap { 1.5 * l0 } else { l0 },
                 control: None,
                 follow: None,
                 motor,

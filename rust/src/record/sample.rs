@@ -48,6 +48,20 @@ impl Simulation {
             for &d in &sc.contacts[j].penetration {
                 e.contact += 0.5 * p.contact_stiffness * d * d;
             }
+            // Elements wrapped on the pulley store their energy at their path length, not
+            // their chord's (contact::wrap).
+            for &(i, length) in &sc.contacts[j].wrapped {
+                let chord = (s.position[(i + 1) % n] - s.position[i]).norm() - m.rest_length[i];
+                let path = length - m.rest_length[i];
+                let energy = |x: f64| {
+                    if m.tension_only && x < 0.0 {
+                        0.0
+                    } else {
+                        0.5 * m.axial_stiffness[i] * x * x
+                    }
+                };
+                e.strain += energy(path) - energy(chord);
+            }
         }
         // Every part pressing on an idler roll, as the force counts them (not only the
         // deepest).

@@ -5,7 +5,9 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, Table, TakeupKind, Wrap};
+use super::{
+    BrakeSpec, DriveSpec, Formulation, FrictionModel, PulleyContact, Table, TakeupKind, Wrap,
+};
 use crate::drives::controller::SpeedController;
 use crate::drives::motor::Motor;
 use crate::drives::sharing::TorqueFollow;
@@ -89,6 +91,20 @@ impl Named for Formulation {
     }
 }
 named_serde!(Formulation);
+
+impl Named for PulleyContact {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (PulleyContact::Nodes, "nodes"),
+        (PulleyContact::Wrap, "wrap"),
+    ];
+    fn expected() -> String {
+        "\"nodes\" or \"wrap\"".into()
+    }
+    fn unknown(_: &str) -> String {
+        format!("unknown pulley contact (known: {})", Self::expected())
+    }
+}
+named_serde!(PulleyContact);
 
 impl Named for Wrap {
     const NAMES: &'static [(Self, &'static str)] =

@@ -54,6 +54,19 @@ impl Formulation {
     }
 }
 
+/// How the belt meets the pulleys (`belt.pulley_contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PulleyContact {
+    /// Nodal penalty contact (thesis eq. 4.70–4.75): the belt round a pulley is a polygon of
+    /// chords whose nodes touch it; nodes placed at equal chords.
+    #[default]
+    Nodes,
+    /// Wrap contact (`contact::wrap`, docs/wrap-contact.md): an element on a pulley is
+    /// measured along its path round it (tangents and arc), so the strand leaves on the
+    /// tangent without chordal ripple; nodes placed at equal arc length.
+    Wrap,
+}
+
 /// Belt properties (the `[belt]` table).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -90,6 +103,9 @@ pub struct BeltParams {
     /// for pre-strained elastic drive belts (the belt-drive literature's benchmarks are
     /// pre-strained 5.26 %). Default 0.1 (10 %).
     pub max_placement_strain: f64,
+    /// How the belt meets the pulleys: [`PulleyContact::Nodes`] (thesis, default) or
+    /// [`PulleyContact::Wrap`] (no chordal ripple; docs/wrap-contact.md).
+    pub pulley_contact: PulleyContact,
 }
 
 impl Default for BeltParams {
@@ -105,6 +121,7 @@ impl Default for BeltParams {
             max_element_angle: std::f64::consts::PI / 6.0,
             tension_only: false,
             max_placement_strain: DEFAULT_MAX_PLACEMENT_STRAIN,
+            pulley_contact: PulleyContact::Nodes,
         }
     }
 }
