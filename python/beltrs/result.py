@@ -415,6 +415,7 @@ class Result:
             util = np.where(slack > 0, (tight - slack) / (slack * capacity), np.where(tight > slack, np.inf, 0.0))
         util[np.isnan(wrap) | (mu == 0)[None, :]] = np.nan
         return Capstan(tight=tight, slack=slack, wrap=wrap, friction=mu, utilisation=util)
+
     def lowpass(self, channel: str, cutoff: float) -> np.ndarray:
         """A recorded channel with everything above ``cutoff`` Hz removed (zero phase, along
         ``time``; :func:`beltrs.analysis.low_pass` on a uniform grid of the run's sample
