@@ -13,6 +13,7 @@ mod kubas_prototype;
 mod load_resistance;
 mod recorder;
 mod recording_params;
+mod rigid_body;
 mod rkf45;
 mod run_contract;
 mod scene_schema;

@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; older versions are refused, naming their version)
+//! # Format (version 5; versions before 4 are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,13 +9,15 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (4) |
+//! | 8..12 | format version, `u32` (5) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
 //! | 24+L..28+L | CRC-32 (IEEE 802.3) of bytes 0..24+L, `u32` |
 //!
-//! The payload holds, in order: the engine version that wrote it (a string); the scene
+//! The payload holds, in order: the engine version that wrote it (a string); from version
+//! 5, the belt formulation and the integrator the state belongs to (their scene names, e.g.
+//! `rigid_body`, `rkf45`: checked against the compiled scene on load); the scene
 //! (every field of [`Scene`], so parameters changed during a run, e.g. a counterweight or a
 //! drive, are kept), as a byte string holding the serde form of the one scene schema
 //! ([`crate::scene`], the same keys as a scene file) in CBOR, whose floats keep every bit;
@@ -24,8 +26,14 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates). Strings, byte strings and
-//! arrays are a `u64` length followed by the items.
+//! element, end element, start and end material coordinates); from version 5, the rigid
+//! belt bodies' angles and angular speeds (empty arrays for the node belt), the adaptive
+//! integrator's next step and its accepted and rejected step counts. Strings, byte strings
+//! and arrays are a `u64` length followed by the items.
+//!
+//! Version 5 added the formulation and integrator tags and the state of the rigid-body
+//! belt and of the adaptive integrator; version 4 files (node belt, central differences)
+//! are still read.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -39,20 +47,20 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
-use crate::error::{BeltError, BeltResult};
 use crate::loads::LoadEdges;
 use crate::model::Model;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::state::{ContactWindow, State};
 use nalgebra::Vector2;
-use std::io::Write;
-use std::path::Path;
+
+mod io;
+pub use io::{load, load_for, save, write_atomic};
 
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -93,6 +101,8 @@ pub fn crc32(bytes: &[u8]) -> u32 {
 pub fn encode(sim: &Simulation) -> Vec<u8> {
     let mut w = Writer::default();
     w.str(env!("CARGO_PKG_VERSION"));
+    w.str(sim.model.formulation.name());
+    w.str(sim.model.integrator.name());
     write_scene(&mut w, &sim.model.scene);
     w.u64(sim.model.nodes as u64);
     w.f64(sim.model.dt);
@@ -170,6 +180,11 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         version,
     };
     let _writer_version = r.str("engine version")?;
+    let tags = if version >= 5 {
+        Some((r.str("formulation")?, r.str("integrator")?))
+    } else {
+        None
+    };
     let scene = read_scene(&mut r)?;
     let nodes = r.u64("node count")?;
     let dt = r.f64("time step")?;
@@ -192,6 +207,15 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         // No loads existed: the node masses are the belt's.
         state.node_mass = model.mass.clone();
     }
+    if let Some((formulation, integrator)) = tags {
+        let compiled = (model.formulation.name(), model.integrator.name());
+        if (formulation.as_str(), integrator.as_str()) != compiled {
+            return Err(format!(
+                "corrupt: tagged as a {formulation} belt integrated by {integrator}, but its scene compiles to a {} belt integrated by {}",
+                compiled.0, compiled.1
+            ));
+        }
+    }
     check_state_fits(&state, &model)?;
     Ok(Simulation::from_parts(model, state))
 }
@@ -210,6 +234,16 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        (
+            "belt body angles",
+            s.body_angle.len(),
+            m.initial_angles.len(),
+        ),
+        (
+            "belt body speeds",
+            s.body_spin.len(),
+            m.initial_angles.len(),
+        ),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -245,129 +279,6 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         return Err(format!("corrupt: node {i} has mass {} kg", s.node_mass[i]));
     }
     Ok(())
-}
-
-/// Write `bytes` to `path` atomically: to a temporary file in the same directory, flushed
-/// to disk, then renamed over `path` (and the directory flushed). `before_rename` runs
-/// once the temporary file is complete, just before the rename; an error from it aborts
-/// the write like a crash would (tests use it), leaving `path` untouched. On any error the
-/// temporary file is removed.
-pub fn write_atomic(
-    path: &Path,
-    bytes: &[u8],
-    before_rename: impl FnOnce(&Path) -> std::io::Result<()>,
-) -> BeltResult<()> {
-    let fail = |problem: String| BeltError::Checkpoint {
-        path: path.display().to_string(),
-        problem,
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| fail("not a file name".into()))?
-        .to_string_lossy()
-        .into_owned();
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
-    };
-    // Unique per call: saves from several threads of one process (or one thread's saves
-    // to the same path) never share a temporary file.
-    static SAVES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let call = SAVES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(".{name}.{}.{call}.tmp", std::process::id()));
-    let write = || -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        drop(f);
-        before_rename(&tmp)?;
-        std::fs::rename(&tmp, path)?;
-        // Make the rename itself durable. Some platforms cannot open a directory; the
-        // file is complete either way.
-        if let Ok(d) = std::fs::File::open(&dir) {
-            let _ = d.sync_all();
-        }
-        Ok(())
-    };
-    write().map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        fail(format!("cannot write: {e}"))
-    })
-}
-
-/// Save the simulation's scene and state to `path` (atomically).
-pub fn save(sim: &Simulation, path: &Path) -> BeltResult<()> {
-    write_atomic(path, &encode(sim), |_| Ok(()))
-}
-
-/// Load a simulation from the checkpoint at `path`.
-pub fn load(path: &Path) -> BeltResult<Simulation> {
-    let fail = |problem: String| BeltError::Checkpoint {
-        path: path.display().to_string(),
-        problem,
-    };
-    let bytes = read_file(path).map_err(fail)?;
-    decode(&bytes).map_err(fail)
-}
-
-/// The bytes of the checkpoint file at `path`, read safely: anything but a regular file is
-/// refused before it is opened (a FIFO would block, `/dev/zero` never ends), the header
-/// is read and checked (magic, version, and the declared length against the file's size)
-/// before anything else, and the rest is read in chunks that poll [`crate::interrupt`].
-fn read_file(path: &Path) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let cannot = |e: std::io::Error| format!("cannot read: {e}");
-    let regular = |meta: &std::fs::Metadata| -> Result<u64, String> {
-        if meta.is_file() {
-            return Ok(meta.len());
-        }
-        let kind = if meta.is_dir() {
-            "a directory"
-        } else {
-            "a device, FIFO or socket"
-        };
-        Err(format!("not a regular file ({kind})"))
-    };
-    regular(&std::fs::metadata(path).map_err(cannot)?)?;
-    let mut file = std::fs::File::open(path).map_err(cannot)?;
-    // Again on the open file: the path may have been replaced in between.
-    let size = regular(&file.metadata().map_err(cannot)?)?;
-    let mut head = vec![0u8; HEADER_BYTES.min(size as usize)];
-    file.read_exact(&mut head).map_err(cannot)?;
-    check_header(&head, size)?;
-    let mut bytes = head;
-    bytes.reserve_exact(size as usize - bytes.len());
-    const CHUNK: u64 = 1 << 20;
-    loop {
-        let got = (&mut file)
-            .take(CHUNK)
-            .read_to_end(&mut bytes)
-            .map_err(cannot)?;
-        if got == 0 || bytes.len() as u64 > size {
-            break;
-        }
-        crate::interrupt::check(CHUNK / 8).map_err(|_| "interrupted".to_string())?;
-    }
-    if bytes.len() as u64 != size {
-        return Err(format!(
-            "the file changed while it was read ({size} bytes, then {})",
-            bytes.len()
-        ));
-    }
-    Ok(bytes)
-}
-
-/// Load a checkpoint and check that it holds `scene` (e.g. the scene file a user resumes
-/// with): a different scene is an error naming the first part that differs.
-pub fn load_for(path: &Path, scene: &Scene) -> BeltResult<Simulation> {
-    let sim = load(path)?;
-    if let Some(diff) = scene_difference(&sim.model.scene, scene) {
-        return Err(BeltError::Checkpoint {
-            path: path.display().to_string(),
-            problem: format!("it holds a different scene than the one given: {diff}"),
-        });
-    }
-    Ok(sim)
 }
 
 /// The first part in which two scenes differ (`None` if they are equal), as
@@ -562,6 +473,11 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    w.f64s(&s.body_angle);
+    w.f64s(&s.body_spin);
+    w.f64(s.adaptive_step);
+    w.u64(s.accepted_steps);
+    w.u64(s.rejected_steps);
 }
 
 fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -606,6 +522,17 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    let (body_angle, body_spin, adaptive_step, accepted_steps, rejected_steps) = if r.version >= 5 {
+        (
+            r.f64s("belt body angles")?,
+            r.f64s("belt body speeds")?,
+            r.f64("adaptive step")?,
+            r.u64("accepted steps")?,
+            r.u64("rejected steps")?,
+        )
+    } else {
+        (Vec::new(), Vec::new(), 0.0, 0, 0)
+    };
     Ok(State {
         time,
         step,
@@ -621,6 +548,11 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        body_angle,
+        body_spin,
+        adaptive_step,
+        accepted_steps,
+        rejected_steps,
     })
 }
 

@@ -26,14 +26,30 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             &body,
             s.step.is_multiple_of(super::FULL_SCAN_INTERVAL),
         );
-        sc.pulley_force[j] = super::pulley_contact(
-            &s.pulley_window[j],
-            &s.position,
-            &s.velocity,
-            &body,
-            &mut sc.force,
-            &mut sc.contacts[j],
-        );
+        let (window, contacts) = (&s.pulley_window[j], &mut sc.contacts[j]);
+        sc.pulley_force[j] = match &p.nonlinear {
+            None => super::pulley_contact(
+                window,
+                &s.position,
+                &s.velocity,
+                &body,
+                &mut sc.force,
+                contacts,
+            ),
+            Some(law) => {
+                let mut law = law.scaled(cx.contact_scale);
+                law.damping = effects.damped(law.damping);
+                super::pulley_contact_law(
+                    window,
+                    &s.position,
+                    &s.velocity,
+                    &body,
+                    &mut sc.force,
+                    contacts,
+                    |p, rate| law.normal_force(p, rate),
+                )
+            }
+        };
     }
 }
 

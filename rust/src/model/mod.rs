@@ -8,6 +8,7 @@
 //! in [`crate::state::State`].
 
 mod belt;
+mod belt_rigid;
 mod idlers;
 mod path;
 mod pulleys;
@@ -24,7 +25,7 @@ use crate::forces;
 use crate::geometry::BeltPath;
 use crate::integrate::Integrator;
 use crate::loads::LoadModel;
-use crate::scene::Scene;
+use crate::scene::{Formulation, Scene};
 use crate::state::DofLayout;
 use nalgebra::Vector2;
 
@@ -62,6 +63,18 @@ pub struct Model {
     pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
+    /// The belt formulation. With [`Formulation::RigidBody`] the "nodes" are the bodies'
+    /// mass centres and the "elements" the joints between them (joint e joins body e and
+    /// e+1): `mass`, `rest_length` (body length), `axial_stiffness` and `axial_damping`
+    /// (translational SDE c_x = EA/l, b_x), `bending_stiffness` (torsional SDE c_φ = EI/l)
+    /// are read per body and per joint (`crate::belt::rigid`).
+    pub formulation: Formulation,
+    /// Body inertias about their mass centres, kg·m² (rigid-body belt; empty otherwise).
+    pub body_inertia: Vec<f64>,
+    /// Torsional SDE damping per joint, N·m·s/rad (rigid-body belt; empty otherwise).
+    pub torsional_damping: Vec<f64>,
+    /// Initial body angles, rad (rigid-body belt; empty otherwise).
+    pub initial_angles: Vec<f64>,
     /// Gravitational acceleration, m/s².
     pub gravity: f64,
     /// Pulleys.
@@ -120,7 +133,14 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         let path = path::compile(scene)?;
-        let belt = belt::compile(scene, &path)?;
+        let formulation = scene.belt.formulation;
+        let (belt, rigid) = match formulation {
+            Formulation::NodeKelvinVoigt => (belt::compile(scene, &path)?, None),
+            Formulation::RigidBody => {
+                let (belt, rigid) = belt_rigid::compile(scene, &path)?;
+                (belt, Some(rigid))
+            }
+        };
         let pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
@@ -129,7 +149,7 @@ impl Model {
         loads.retain(|l| l.mass_per_length > 0.0);
         let stages = stages::select(scene, &pulleys, &idlers, &loads);
         // With loads the node masses change during the run: never read them as uniform.
-        let uniform = if loads.is_empty() {
+        let uniform = if loads.is_empty() && rigid.is_none() {
             forces::Uniform::of(
                 &belt.axial_stiffness,
                 &belt.axial_damping,
@@ -157,15 +177,22 @@ impl Model {
             bending_stiffness: belt.bending_stiffness,
             uniform,
             tension_only: scene.belt.tension_only,
+            formulation,
             gravity: scene.gravity,
-            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()),
+            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len())
+                .with_bodies(if rigid.is_some() { belt.nodes } else { 0 }),
             pulleys,
             idlers,
             loads,
             path,
             initial_positions: belt.initial_positions,
+            body_inertia: rigid.as_ref().map_or(Vec::new(), |r| r.inertia.clone()),
+            torsional_damping: rigid
+                .as_ref()
+                .map_or(Vec::new(), |r| r.torsional_damping.clone()),
+            initial_angles: rigid.map_or(Vec::new(), |r| r.angles),
             stages,
-            integrator: Integrator::CentralDifference,
+            integrator: Integrator::of(scene),
             dt: 0.0,
             dt_limit: 0.0,
             dt_cause: String::new(),
@@ -194,6 +221,12 @@ impl Model {
         model.node_stiffness_bound = stable.node_stiffness_bound;
         model.takeup_stiffness_bound = stable.takeup_stiffness_bound;
         Ok(model)
+    }
+
+    /// True for the rigid-body belt ([`Formulation::RigidBody`]).
+    #[inline]
+    pub fn is_rigid(&self) -> bool {
+        self.formulation == Formulation::RigidBody
     }
 
     /// True if the compiled model runs `stage`.

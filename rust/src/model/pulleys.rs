@@ -1,5 +1,6 @@
 //! Compiled pulleys and their takeups, drives and brakes.
 
+use crate::contact::nonlinear::NonlinearContact;
 use crate::friction::Prescribed;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
 use nalgebra::Vector2;
@@ -36,6 +37,9 @@ pub struct PulleyModel {
     pub contact_stiffness: f64,
     /// Contact damping, N·s/m (the scene's absolute value, or 2ζ√(k·m) from its ratio).
     pub contact_damping: f64,
+    /// Kubas's nonlinear contact law (eq. 4–11), replacing `contact_stiffness` and
+    /// `contact_damping`, if the scene gives one.
+    pub nonlinear: Option<NonlinearContact>,
     /// Friction model.
     pub friction: FrictionModel,
     /// Takeup, if the pulley translates.
@@ -49,6 +53,20 @@ pub struct PulleyModel {
 }
 
 impl PulleyModel {
+    /// The stiffest contact (N/m) and its damping (N·s/m) a belt point can meet on this
+    /// pulley, every stiffness times `scale`: the linear law's, or the nonlinear law's
+    /// tangent 2c₁p + c₂ at p_max (where its damping is fully in) with its full damping b.
+    #[inline]
+    pub fn contact_bound(&self, scale: f64) -> (f64, f64) {
+        match &self.nonlinear {
+            None => (self.contact_stiffness * scale, self.contact_damping),
+            Some(law) => (
+                law.scaled(scale).stiffness_at(law.damping_depth),
+                law.damping,
+            ),
+        }
+    }
+
     /// The brake's hold at time `time` (s): at rest, up to its capacity then.
     #[inline]
     pub fn brake_hold(&self, time: f64) -> Option<Prescribed> {
@@ -92,12 +110,16 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 inertia: p.polar_inertia() + drive_inertia,
                 bearing_damping: p.bearing_damping,
                 contact_stiffness: p.contact_stiffness,
-                contact_damping: crate::scene::contact_damping(
-                    p.contact_damping,
-                    p.contact_damping_ratio,
-                    p.contact_stiffness,
-                    element_mass,
-                ),
+                contact_damping: match &p.nonlinear_contact {
+                    Some(law) => law.damping,
+                    None => crate::scene::contact_damping(
+                        p.contact_damping,
+                        p.contact_damping_ratio,
+                        p.contact_stiffness,
+                        element_mass,
+                    ),
+                },
+                nonlinear: p.nonlinear_contact,
                 friction: p.friction,
                 takeup: p.takeup.as_ref().map(|t| {
                     let dir = Vector2::new(t.direction[0], t.direction[1]);

@@ -153,7 +153,7 @@ fn internal_error(what: &str) -> PyErr {
 }
 
 /// Run `f`, turning a Rust panic into a `BeltrsError` instead of crossing into Python.
-fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+pub(crate) fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(r) => r,
         Err(payload) => Err(internal_error(&panic_message(payload))),
@@ -256,6 +256,19 @@ impl PySimulation {
     #[getter]
     fn step_count(&self, py: Python<'_>) -> u64 {
         self.lock(py).state.step
+    }
+
+    /// Steps the adaptive integrator (RKF45) accepted since the model was compiled.
+    #[getter]
+    fn accepted_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.accepted_steps
+    }
+
+    /// Steps the adaptive integrator (RKF45) rejected and retried since the model was
+    /// compiled.
+    #[getter]
+    fn rejected_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.rejected_steps
     }
 
     /// Length of the initial belt path, m.
@@ -751,6 +764,7 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::case_k_scene, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
     m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;

@@ -5,7 +5,7 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, Table, Wrap};
+use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, Table, Wrap};
 use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -79,13 +79,30 @@ macro_rules! named_serde {
 }
 
 impl Named for Formulation {
-    const NAMES: &'static [(Self, &'static str)] =
-        &[(Formulation::NodeKelvinVoigt, "node_kelvin_voigt")];
-    fn unknown(_: &str) -> String {
-        "unknown belt formulation (known: \"node_kelvin_voigt\")".into()
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (Formulation::NodeKelvinVoigt, "node_kelvin_voigt"),
+        (Formulation::RigidBody, "rigid_body"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name(
+            "belt formulation",
+            name,
+            &["node_kelvin_voigt", "rigid_body"],
+        )
     }
 }
 named_serde!(Formulation);
+
+impl Named for IntegratorKind {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (IntegratorKind::CentralDifference, "central_difference"),
+        (IntegratorKind::Rkf45, "rkf45"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name("integrator", name, &["central_difference", "rkf45"])
+    }
+}
+named_serde!(IntegratorKind);
 
 impl Named for Wrap {
     const NAMES: &'static [(Self, &'static str)] =

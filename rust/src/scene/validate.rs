@@ -225,6 +225,7 @@ impl Scene {
     pub fn validate(&self) -> BeltResult<()> {
         check_non_negative("gravity", self.gravity)?;
         self.recording.validate()?;
+        self.validate_choices()?;
         let b = &self.belt;
         check_positive("belt.axial_stiffness", b.axial_stiffness)?;
         check_positive("belt.mass_per_length", b.mass_per_length)?;
