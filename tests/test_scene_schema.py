@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, SceneError, Solver,
-                    StartCurve, Takeup)
+from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, SceneError,
+                    Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 

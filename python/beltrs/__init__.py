@@ -13,7 +13,9 @@ from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
 from .result import Result, load_result
-from .scene import Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, Solver, StartCurve, Takeup
+from .scene import (
+    Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, Solver, StartCurve, Takeup,
+)
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 

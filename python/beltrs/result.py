@@ -375,6 +375,8 @@ class Result:
             "wall_time": float(self.wall_time),
             "interrupted": int(bool(self.interrupted)),
             "record_every": int(self.record_every),
+            "steps_accepted": int(self.steps_accepted),
+            "steps_rejected": int(self.steps_rejected),
             "stages": json.dumps(list(self.stages)),
             "metadata_types": json.dumps(meta_types),
         }

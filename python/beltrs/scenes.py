@@ -423,7 +423,7 @@ def guo_wang_din(length: float = GUO_WANG["length"], *, material: float = GUO_WA
     )
 
 
-def kubas_case_k(ramp_time: float = 0.3, preload_strain: float = 0.0035) -> Scene:
+def kubas_case_k(ramp_time: float = 0.3, preload_strain: float = 0.00344) -> Scene:
     """Case K: Kubas's (2014) poly-V belt transmission with the rigid-body belt
     (``docs/kubas.md``, ``docs/reference-cases.md``).
 
@@ -441,8 +441,8 @@ def kubas_case_k(ramp_time: float = 0.3, preload_strain: float = 0.0035) -> Scen
         ramp_time: time the drive torque takes to reach 15 N*m, s, > 0. Default 0.3 (the
             paper's figure 12).
         preload_strain: how much shorter than its path round the pulleys the belt is, as
-            a strain (length = path/(1 + strain)), dimensionless. Default 0.0035: a static
-            tension of about 555 N once the bodies have sunk into the pulleys.
+            a strain (length = path/(1 + strain)), dimensionless. Default 0.00344: a static
+            tension of 555 N (measured) once the bodies have sunk into the pulleys.
     """
     from .simulation import _real
 

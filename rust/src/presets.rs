@@ -49,8 +49,9 @@ pub fn case_h(elements: usize) -> Scene {
 /// µs = 1.05, µk = 1.0; the drive torque rising linearly to 15 N·m (counter-clockwise) over
 /// `ramp_time` s; the driven pulley ("driven") resisting with 15 N·m at 8π rad/s,
 /// proportional to its speed. The belt is `preload_strain` shorter than its path around
-/// the pulleys (1/(1 + strain)): 0.0035 gives a static tension of about 555 N ("slightly
-/// above 550 N") after the mass centres have sunk into the pulleys (`docs/kubas.md`).
+/// the pulleys (1/(1 + strain)): 0.00344 gives a static tension of 556 N ("slightly above
+/// 550 N", measured after the relaxation: the mass centres sink into the pulleys and the
+/// bodies' joints lie outside the rims, `docs/kubas.md`).
 pub fn case_k(ramp_time: f64, preload_strain: f64) -> Scene {
     use crate::contact::nonlinear::NonlinearContact;
     use crate::scene::{DriveSpec, Formulation, FrictionModel, Table};

@@ -69,16 +69,7 @@ impl Scene {
                 ));
             }
         }
-        if self.solver.integrator == IntegratorKind::Rkf45 {
-            self.validate_adaptive()?;
-        }
-        Ok(())
-    }
-
-    /// The rules of the adaptive integrator: valid tolerances, and none of the effects that
-    /// are solved for a fixed step (their force is whatever stops a contact or holds a
-    /// pulley within the coming step, which an adaptive step cannot know in advance).
-    fn validate_adaptive(&self) -> BeltResult<()> {
+        // Checked whatever the integrator: a value that is wrong is refused, not kept for later.
         let s = &self.solver;
         if !(s.relative_tolerance.is_finite() && s.relative_tolerance > 0.0) {
             return Err(BeltError::invalid(
@@ -94,6 +85,17 @@ impl Scene {
                 "must be a finite number ≥ 0",
             ));
         }
+        if self.solver.integrator == IntegratorKind::Rkf45 {
+            self.validate_adaptive()?;
+        }
+        Ok(())
+    }
+
+    /// The rules of the adaptive integrator: valid tolerances, and none of the effects that
+    /// are solved for a fixed step (their force is whatever stops a contact or holds a
+    /// pulley within the coming step, which an adaptive step cannot know in advance).
+    fn validate_adaptive(&self) -> BeltResult<()> {
+        let s = &self.solver;
         if let Some(dt) = s.time_step {
             return Err(BeltError::invalid(
                 "solver.time_step",

@@ -3,7 +3,7 @@
 //! mass centres as the belt points (`State::position`, `State::velocity`), as Kubas applies
 //! contact and friction there (section 2.1).
 
-use super::sdes::{joint, joint_energy, LinkState, SdeParams};
+use super::sdes::{joint_energy, joint_with, LinkState, SdeParams};
 use crate::model::Model;
 use crate::pipeline::StageContext;
 use crate::state::State;
@@ -48,23 +48,30 @@ pub fn chain(cx: &mut StageContext<'_>) {
         *t = 0.0;
     }
     let damped = cx.effects.damping;
-    let mut left = link(m, s, 0);
-    let first = left;
+    // Each body's half-length vector (a sine and a cosine) once, carried to the next joint.
+    let first = link(m, s, 0);
+    let first_half = first.half_vector();
+    let (mut left, mut hl) = (first, first_half);
     for e in 0..n {
         let r = if e + 1 == n { 0 } else { e + 1 };
-        let right = if r == 0 { first } else { link(m, s, r) };
-        let j = joint(&left, &right, &params(m, e, damped));
+        let (right, hr) = if r == 0 {
+            (first, first_half)
+        } else {
+            let b = link(m, s, r);
+            (b, b.half_vector())
+        };
+        let j = joint_with(&left, hl, &right, hr, &params(m, e, damped));
         sc.force[r] += j.force_on_right;
         sc.force[e] -= j.force_on_right;
         sc.body_torque[e] += j.torque_on_left;
         sc.body_torque[r] += j.torque_on_right;
-        let axis = left.half_vector() / left.length + right.half_vector() / right.length;
+        let axis = hl / left.length + hr / right.length;
         sc.tension[e] = if j.direction.dot(&axis) < 0.0 {
             -j.tension
         } else {
             j.tension
         };
-        left = right;
+        (left, hl) = (right, hr);
     }
 }
 
