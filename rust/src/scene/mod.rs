@@ -23,36 +23,15 @@ mod validate;
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
-pub use rules::{IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE};
+pub use rules::{
+    Formulation, IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE,
+};
 pub(crate) use validate::check_finite;
 
 /// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
 /// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
 /// (e.g. a radius in millimetres), and would exhaust memory rather than fail cleanly.
 pub const MAX_ELEMENTS: usize = 1_000_000;
-
-/// Which discrete belt model to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Formulation {
-    /// Hustrulid (1993): lumped node masses joined by Kelvin-Voigt axial elements and
-    /// rotational bending springs (thesis eq. 4.1–4.60).
-    #[default]
-    NodeKelvinVoigt,
-    /// Kubas (2014) and Guo & Wang (2020): a chain of rigid bodies (x, y, φ each), joined by
-    /// translational and torsional Kelvin–Voigt spring-dampers with c_x = EA/l,
-    /// c_φ = EI/l (`docs/kubas.md`, `crate::belt::rigid`).
-    RigidBody,
-}
-
-impl Formulation {
-    /// Name used in scene files and in Python.
-    pub fn name(self) -> &'static str {
-        match self {
-            Formulation::NodeKelvinVoigt => "node_kelvin_voigt",
-            Formulation::RigidBody => "rigid_body",
-        }
-    }
-}
 
 /// Belt properties (the `[belt]` table).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

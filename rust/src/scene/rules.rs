@@ -3,8 +3,31 @@
 //! refuses, by name, a combination that the engine cannot simulate as asked, instead of
 //! ignoring part of it.
 
-use super::{Formulation, FrictionModel, PulleySpec, Scene};
+use super::{FrictionModel, PulleySpec, Scene};
 use crate::error::{BeltError, BeltResult};
+
+/// Which discrete belt model to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Formulation {
+    /// Hustrulid (1993): lumped node masses joined by Kelvin-Voigt axial elements and
+    /// rotational bending springs (thesis eq. 4.1–4.60).
+    #[default]
+    NodeKelvinVoigt,
+    /// Kubas (2014) and Guo & Wang (2020): a chain of rigid bodies (x, y, φ each), joined by
+    /// translational and torsional Kelvin–Voigt spring-dampers with c_x = EA/l,
+    /// c_φ = EI/l (`docs/kubas.md`, `crate::belt::rigid`).
+    RigidBody,
+}
+
+impl Formulation {
+    /// Name used in scene files and in Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::NodeKelvinVoigt => "node_kelvin_voigt",
+            Formulation::RigidBody => "rigid_body",
+        }
+    }
+}
 
 /// The time integrator a scene asks for (`solver.integrator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
