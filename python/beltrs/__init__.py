@@ -16,6 +16,7 @@ from .result import Result, load_result
 from .scene import (
     Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, Solver, StartCurve, Takeup,
 )
+from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
 
@@ -31,12 +32,14 @@ __all__ = [
     "DivergenceError",
     "DriveDirectionWarning",
     "Drive",
+    "FluidCoupling",
     "Friction",
     "Idler",
     "IdlerContactWarning",
     "Load",
     "Model",
     "NonlinearContact",
+    "Motor",
     "NotRelaxedWarning",
     "Pulley",
     "Recording",
@@ -45,9 +48,11 @@ __all__ = [
     "SceneError",
     "Simulation",
     "Solver",
+    "SpeedController",
     "StartCurve",
     "Takeup",
     "TimeStepError",
+    "TorqueFollow",
     "UndampedContactWarning",
     "__version__",
     "analysis",

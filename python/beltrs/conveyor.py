@@ -37,7 +37,8 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .scene import Belt, Drive, Friction, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
+from .scene import Belt, Drive, Friction, Load, Pulley, Recording, Scene, Solver, SpeedController, StartCurve, Takeup
+from .scene import TorqueFollow
 from .statics import check
 
 __all__ = [
@@ -205,6 +206,14 @@ class DriveSpec:
             rated speed ``motor_speed`` (reduced to the drum through the gearbox ratio).
             Default 0.
         motor_speed: rated motor speed, rad/s. Default 1500 rpm.
+        controller: a PI speed controller (:class:`beltrs.SpeedController`, gains from
+            physics by default) instead of the ideal speed follower; with its ``droop``,
+            speed-controlled drives share load in proportion to rated torque / droop.
+            Default None (ideal).
+        follow: location of a master drive this one follows (master-slave torque
+            sharing, :class:`beltrs.TorqueFollow`): it applies share / master's share of
+            the master's torque (the drums have one radius). The master needs a
+            ``controller``; a follower has no ``start_curve``. Default None.
     """
 
     location: str = "head"
@@ -214,6 +223,8 @@ class DriveSpec:
     torque_limit: float = 1.6
     inertia: float = 0.0
     motor_speed: float = 1500.0 * 2 * math.pi / 60
+    controller: Optional[SpeedController] = None
+    follow: Optional[str] = None
 
     def validate(self, where: str) -> None:
         if self.location not in LOCATIONS:
@@ -226,6 +237,15 @@ class DriveSpec:
         check(f"{where}.motor_speed", self.motor_speed, positive=True, unit="rad/s")
         if self.start_curve is not None and not isinstance(self.start_curve, StartCurve):
             raise SceneError(f"{where}.start_curve = {self.start_curve!r}: expected a beltrs.StartCurve")
+        if self.controller is not None and not isinstance(self.controller, SpeedController):
+            raise SceneError(f"{where}.controller = {self.controller!r}: expected a beltrs.SpeedController")
+        if self.follow is not None:
+            if self.follow not in LOCATIONS or self.follow == self.location:
+                raise SceneError(f"{where}.follow = {self.follow!r}: must be the location of another drive "
+                                 f"(\"head\" or \"tail\")")
+            if self.start_curve is not None or self.controller is not None:
+                raise SceneError(f"{where}.follow = {self.follow!r}: a follower takes its torque from its master; "
+                                 "leave start_curve and controller out")
 
 
 @dataclass
@@ -402,6 +422,12 @@ class Conveyor:
             raise SceneError("drives = []: a conveyor needs at least one drive")
         for i, d in enumerate(self.drives):
             d.validate(f"drives[{i}]")
+        for i, d in enumerate(self.drives):
+            if d.follow is not None:
+                master = next((m for m in self.drives if m.location == d.follow), None)
+                if master is None or master.controller is None or master.follow is not None:
+                    raise SceneError(f"drives[{i}].follow = {d.follow!r}: the master must be a drive there with a "
+                                     "controller (a PI speed controller), not itself a follower")
         places = [d.location for d in self.drives]
         if len(set(places)) != len(places):
             raise SceneError(f"drives = {places!r}: one drive per pulley (a second motor on one drum is "
@@ -633,6 +659,8 @@ class Conveyor:
                                          channels=("tension", "node_position"), stabilise_friction=inclined))
 
     def _curve(self, d: DriveSpec) -> StartCurve:
+        if d.follow is not None:  # a follower runs on its master's curve
+            d = next(m for m in self.drives if m.location == d.follow)
         curve = d.start_curve or StartCurve(shape="harrison", speed=self.speed, ramp=10.0)
         if curve.speed is None or not curve.speed > 0:
             raise SceneError(f"start_curve.speed = {curve.speed!r}: give the belt speed, positive (m/s); the "
@@ -644,7 +672,12 @@ class Conveyor:
         power = self.motor_power(d.location)
         ratio = d.motor_speed / (self.speed / r)
         rated = power / d.motor_speed * ratio  # N*m at the drum
-        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2)
+        if d.follow is not None:
+            master = next(m for m in self.drives if m.location == d.follow)
+            return Drive(follow=TorqueFollow(master=d.follow, ratio=d.share / master.share),
+                         max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2)
+        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2,
+                     controller=d.controller)
 
     def motor_power(self, location: str = "head") -> float:
         """Rated power of the drive at ``location``, W (given, or chosen as
@@ -834,10 +867,13 @@ def _read(table: Any) -> Conveyor:
         drives = []
         for i, d in enumerate(kw["drives"]):
             dk = fields_of(DriveSpec, d, f"conveyor.drives[{i}]")
-            if "start_curve" in dk:
-                from .scene import _read_dataclass
+            from .scene import _read_dataclass
 
+            if "start_curve" in dk:
                 dk["start_curve"] = _read_dataclass(StartCurve, dk["start_curve"], f"conveyor.drives[{i}].start_curve")
+            if "controller" in dk:
+                where = f"conveyor.drives[{i}].controller"
+                dk["controller"] = _read_dataclass(SpeedController, dk["controller"], where)
             drives.append(DriveSpec(**dk))
         kw["drives"] = drives
     for key in ("profile", "curve_radii", "lagging"):

@@ -38,7 +38,8 @@ class Model:
         stages: the stages one step runs, in order (``"loads"``, ``"axial"`` or
             ``"axial_damped"``, ``"bending"``, ``"pulley_contact"``, ``"idler_contact"``,
             ``"running_resistance"``, ``"drives"``, ``"bearing_drag"``,
-            ``"pulley_friction"``, ``"idler_friction"``, ``"speed_drives"``, ``"brakes"``).
+            ``"motors"``, ``"speed_control"``, ``"pulley_friction"``, ``"idler_friction"``,
+            ``"speed_drives"``, ``"brakes"``).
             An effect the scene does not use is absent and costs nothing: ``axial``
             instead of ``axial_damped`` when the damping ratio is 0, no ``bending`` when
             EI = 0, no ``pulley_contact`` when every pulley's contact stiffness is 0, no
@@ -54,6 +55,10 @@ class Model:
         wrap_angles: wrap angle on each pulley on the initial path, rad.
         rest_length: element rest lengths, m, shape ``[E]`` (read-only).
         node_mass: node masses, kg, shape ``[E]`` (read-only).
+        controllers: per pulley, its compiled PI speed controller as a dict (``inertia``
+            kg*m^2 the gains are tuned on, ``proportional_gain`` N*m*s/rad,
+            ``integral_gain`` N*m/rad, ``droop`` rad/s per N*m), or None
+            (``docs/drives.md``).
     """
 
     scene: Scene
@@ -66,6 +71,7 @@ class Model:
     wrap_angles: tuple[float, ...]
     rest_length: np.ndarray
     node_mass: np.ndarray
+    controllers: tuple[Any, ...] = ()
 
     @classmethod
     def _from_core(cls, core: Any, scene: Scene) -> "Model":
@@ -80,6 +86,10 @@ class Model:
             wrap_angles=tuple(float(w) for w in core.wrap_angles),
             rest_length=_read_only(core.rest_length),
             node_mass=_read_only(core.node_mass),
+            controllers=tuple(
+                None if c is None else dict(zip(("inertia", "proportional_gain", "integral_gain", "droop"), c))
+                for c in core.controllers
+            ),
         )
 
     def has_stage(self, name: str) -> bool:

@@ -35,16 +35,20 @@ __all__ = [
     "Belt",
     "Brake",
     "Drive",
+    "FluidCoupling",
     "Friction",
     "Idler",
     "Load",
     "NonlinearContact",
+    "Motor",
     "Pulley",
     "Recording",
     "Scene",
     "Solver",
+    "SpeedController",
     "StartCurve",
     "Takeup",
+    "TorqueFollow",
 ]
 
 
@@ -218,6 +222,142 @@ class StartCurve(_Table):
 
 
 @dataclass
+@_engine_table("controller")
+class SpeedController(_Table):
+    """PI speed controller of a speed-controlled drive (``docs/drives.md``): a real VFD
+    beside the ideal speed follower. The drive's ``start_curve`` is its reference and its
+    ``max_torque`` the torque limit.
+
+    The motor torque is T = clamp((Kp*(w_ref - w) + Ki*I) / (1 + Kp*delta), +-max_torque),
+    dI/dt = w_ref - w - delta*T, with conditional integration while limited (anti-windup).
+
+    Attributes:
+        bandwidth: speed-loop bandwidth w_c, rad/s, > 0. Default 10 (1.6 Hz).
+        damping_ratio: damping ratio zeta of the rigid loop, > 0. Default 1.
+        inertia: inertia J the default gains are tuned on, kg*m^2, > 0. Default None: the
+            rigid-body inertia of the whole conveyor reflected to this pulley (belt and
+            material, every pulley and idler roll as I*(r/r_k)^2), divided by the torque
+            the drives give per unit of this controller's output (the number of PI drives
+            plus their followers' ratios).
+        proportional_gain: Kp, N*m*s/rad, > 0. Default None: 2*zeta*w_c*J.
+        integral_gain: Ki, N*m/rad, >= 0. Default None: w_c^2*J.
+        torque_time_constant: first-order lag of the torque (current) loop, s, >= 0 and
+            below Kp/Ki. Default 0.
+        droop: speed droop, dimensionless, in [0, 1): the reference falls by droop*|w0| at
+            ``rated_torque`` (w0 the curve's final pulley speed). Default 0.
+        rated_torque: torque at which the speed falls by ``droop``, N*m, > 0; required with
+            droop > 0 and refused without. Default None.
+    """
+
+    bandwidth: float
+    damping_ratio: float
+    inertia: Optional[float]
+    proportional_gain: Optional[float]
+    integral_gain: Optional[float]
+    torque_time_constant: float
+    droop: float
+    rated_torque: Optional[float]
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
+@_engine_table("follow")
+class TorqueFollow(_Table):
+    """Master-slave torque sharing (``docs/drives.md``): the drive applies ``ratio`` times
+    the motor torque of the drive on pulley ``master`` each step (within its own
+    ``max_torque``), in the sense that drives the belt the same way. The master is a PI
+    speed-controlled drive or a torque-table drive (not an ideal speed follower, not a
+    follower).
+
+    Attributes:
+        master: name of the master drive's pulley. Required.
+        ratio: follower torque / master torque, dimensionless, > 0. Default 1.
+    """
+
+    master: Optional[str]
+    ratio: float
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
+@_engine_table("coupling")
+class FluidCoupling(_Table):
+    """Constant-fill fluid coupling between a DOL motor and its gearbox
+    (``docs/drives.md``): T = rated_torque * (n_p/rated_speed)^2 * phi(s), n_p the faster
+    shaft's speed (it pumps), s = (n_in - n_out)/n_p, phi(s) = (s/s_r)(1+b)/(1+b*s/s_r)
+    with b = (1 - k*s_r)/(k - 1): phi(s_r) = 1, phi(1) = k. Odd in the slip.
+
+    Attributes:
+        rated_torque: torque at the rated slip and input speed, N*m, > 0. Default None:
+            the motor's rated torque.
+        rated_speed: input speed of the rated point, rad/s, > 0. Default None: the motor's
+            rated speed.
+        rated_slip: s_r, in (0, 1). Default 0.03.
+        stall_torque_ratio: k, torque at stall (output at rest) / rated torque at the same
+            input speed, in (1, 1/rated_slip). Default 5.
+    """
+
+    rated_torque: Optional[float]
+    rated_speed: Optional[float]
+    rated_slip: float
+    stall_torque_ratio: float
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
+@_engine_table("motor")
+class Motor(_Table):
+    """Induction motor started direct on line (``docs/drives.md``): a torque-speed curve
+    at the motor shaft, through a gearbox of ratio ``gear_ratio`` (and optionally a
+    :class:`FluidCoupling`) to the pulley.
+
+    Kloss curve (default): T(s) = 2*T_b/(s/s_b + s_b/s), slip s = (n_s - n)/n_s, through
+    the rated point (T_r = rated_power/rated_speed) with T_b = k*T_r and
+    s_b = s_r*(k + sqrt(k^2 - 1)). Kloss underestimates the locked-rotor torque of real
+    (deep-bar, double-cage) motors: give the data sheet's curve as ``speed``/``torque``.
+
+    Attributes:
+        rated_power: rated shaft power, W, > 0. Required.
+        rated_speed: rated speed at the motor shaft, rad/s, > 0 (1485 rpm = 155.5 rad/s).
+            Required.
+        synchronous_speed: rad/s, > rated_speed (4-pole 50 Hz: 157.08). Required.
+        breakdown_torque_ratio: k = breakdown / rated torque of the Kloss curve, > 1.
+            Default 2.5.
+        speed: motor speeds of a torque table, rad/s, strictly increasing; replaces the
+            Kloss curve (linear between points, held beyond the ends). Default None.
+        torque: the table's motor torques, N*m. Default None.
+        gear_ratio: motor speed / pulley speed, > 0. Default 1.
+        rotation: sense in which the motor turns the pulley, ``"ccw"`` (default) or ``"cw"``.
+        rotor_inertia: rotor (and coupling pump side) inertia at the motor shaft, kg*m^2,
+            >= 0; counted gear_ratio^2 * rotor_inertia at the pulley when rigid; > 0 with a
+            coupling (the motor is then a body of its own). Default 0.
+        start: time the motor is switched on, s. Default 0.
+        coupling: fluid coupling between motor and gearbox. Default None (rigid).
+    """
+
+    rated_power: Optional[float]
+    rated_speed: Optional[float]
+    synchronous_speed: Optional[float]
+    breakdown_torque_ratio: float
+    speed: Optional[Sequence[float]]
+    torque: Optional[Sequence[float]]
+    gear_ratio: float
+    rotation: str
+    rotor_inertia: float
+    start: float
+    coupling: Optional[FluidCoupling]
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
 @_engine_table("drive")
 class Drive(_Table):
     """A drive on a pulley, torque-controlled or speed-controlled.
@@ -244,7 +384,16 @@ class Drive(_Table):
         start_curve: the starting curve of a speed-controlled drive. Default None
             (torque-controlled).
         max_torque: torque limit of a speed-controlled drive's motor (e.g. its breakdown
-            torque), N*m, > 0. Default inf (no limit). Only with ``start_curve``.
+            torque), N*m, > 0. Default inf (no limit). Only with ``start_curve`` or
+            ``follow``.
+        controller: a PI speed controller (:class:`SpeedController`) following
+            ``start_curve``. Default None: the ideal speed follower.
+        follow: master-slave torque sharing (:class:`TorqueFollow`). Default None.
+        motor: an induction motor started direct on line (:class:`Motor`), the drive's
+            torque. Default None.
+        flywheel: flywheel on the drive's high-speed shaft (driven side of a coupling),
+            kg*m^2, >= 0; counts gear_ratio^2 * flywheel at the pulley (gear ratio of
+            ``motor``, 1 without one). Default 0.
     """
 
     time: Sequence[float]
@@ -255,6 +404,10 @@ class Drive(_Table):
     inertia: float
     start_curve: Optional[StartCurve]
     max_torque: float
+    controller: Optional[SpeedController]
+    follow: Optional[TorqueFollow]
+    motor: Optional[Motor]
+    flywheel: float
 
     def __post_init__(self) -> None:
         _normalise(self)

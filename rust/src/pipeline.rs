@@ -5,6 +5,8 @@
 //! then moves the state with them.
 
 use crate::contact::{IdlerContact, PulleyContacts};
+use crate::drives::controller::ControlOutput;
+use crate::drives::motor::MotorOutput;
 use crate::friction::{FrictionOutcome, StickScratch};
 use crate::integrate::Inertia;
 use crate::model::{Model, Stage, TakeupModel};
@@ -88,6 +90,10 @@ pub struct Scratch {
     /// Running-resistance force of each idler on the belt, N, along the contact tangent
     /// (the belt receives −f·t; 0 when the idler has none or is not touched).
     pub idler_resistance: Vec<f64>,
+    /// What each pulley's PI speed controller decided (`crate::drives::controller`).
+    pub control: Vec<ControlOutput>,
+    /// What each pulley's DOL motor did (`crate::drives::motor`).
+    pub motor: Vec<MotorOutput>,
 }
 
 impl Scratch {
@@ -126,6 +132,8 @@ impl Scratch {
             idler_contacts: vec![IdlerContact::default(); q],
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
+            control: vec![ControlOutput::default(); p],
+            motor: vec![MotorOutput::default(); p],
         }
     }
 
@@ -209,6 +217,8 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::IdlerContact => crate::contact::stage::idler_contact(cx),
             Stage::RunningResistance => crate::friction::stage::running_resistance(cx),
             Stage::Drives => crate::drives::torque::torque_drives(cx),
+            Stage::Motors => crate::drives::motor::motors(cx),
+            Stage::SpeedControl => crate::drives::controller::speed_control(cx),
             Stage::BearingDrag => crate::drives::bearing::bearing_drag(cx),
             Stage::PulleyFriction => crate::friction::stage::pulley_friction(cx),
             Stage::IdlerFriction => crate::friction::stage::idler_friction(cx),

@@ -1,5 +1,6 @@
 //! The mutable state of a run: plain arrays that can be copied, saved and restored.
 
+use crate::drives::controller::DriveMemory;
 use crate::loads::LoadEdges;
 use crate::model::Model;
 use nalgebra::Vector2;
@@ -69,6 +70,9 @@ pub struct State {
     /// Steps the adaptive integrator rejected (and retried smaller) since the model was
     /// compiled.
     pub rejected_steps: u64,
+    /// Memory of each pulley's PI speed controller (error integral, lagged torque; zero
+    /// for pulleys without one).
+    pub drive_memory: Vec<DriveMemory>,
 }
 
 impl State {
@@ -106,6 +110,7 @@ impl State {
             adaptive_step: 0.0,
             accepted_steps: 0,
             rejected_steps: 0,
+            drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
         }
     }
 

@@ -26,10 +26,12 @@
 //! node positions and half-step velocities, pulley speeds and angles, takeup travel and
 //! speed, idler speeds, the contact window of each pulley, the element each idler tracks,
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
-//! element, end element, start and end material coordinates); from version 5, the rigid
-//! belt bodies' angles and angular speeds (empty arrays for the node belt), the adaptive
-//! integrator's next step and its accepted and rejected step counts. Strings, byte strings
-//! and arrays are a `u64` length followed by the items.
+//! element, end element, start and end material coordinates), the memory of each
+//! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
+//! within version 4, so a version 4 file that ends before it reads as zero memory); from
+//! version 5, the rigid belt bodies' angles and angular speeds (empty arrays for the node
+//! belt), the adaptive integrator's next step and its accepted and rejected step counts.
+//! Strings, byte strings and arrays are a `u64` length followed by the items.
 //!
 //! Version 5 added the formulation and integrator tags and the state of the rigid-body
 //! belt and of the adaptive integrator; version 4 files (node belt, central differences)
@@ -47,6 +49,7 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
+use crate::drives::controller::DriveMemory;
 use crate::loads::LoadEdges;
 use crate::model::Model;
 use crate::scene::Scene;
@@ -234,6 +237,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("idler elements", s.idler_element.len(), q),
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
+        ("drive memories", s.drive_memory.len(), p),
         (
             "belt body angles",
             s.body_angle.len(),
@@ -473,6 +477,12 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(e.start);
         w.f64(e.end);
     }
+    w.u64(s.drive_memory.len() as u64);
+    for c in &s.drive_memory {
+        w.f64(c.integral);
+        w.f64(c.torque);
+        w.f64(c.motor_speed);
+    }
     w.f64s(&s.body_angle);
     w.f64s(&s.body_spin);
     w.f64(s.adaptive_step);
@@ -522,6 +532,22 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
+    // Controller memory: always in version 5; added within version 4, so absent from
+    // older version 4 files (zero memory).
+    let drive_memory = if r.version >= 5 || r.pos < r.bytes.len() {
+        let n = r.len("drive memories", 24)?;
+        (0..n)
+            .map(|_| {
+                Ok(DriveMemory {
+                    integral: r.f64("drive memory")?,
+                    torque: r.f64("drive memory")?,
+                    motor_speed: r.f64("drive memory")?,
+                })
+            })
+            .collect::<Decoded<Vec<_>>>()?
+    } else {
+        vec![DriveMemory::default(); pulley_omega.len()]
+    };
     let (body_angle, body_spin, adaptive_step, accepted_steps, rejected_steps) = if r.version >= 5 {
         (
             r.f64s("belt body angles")?,
@@ -548,6 +574,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         drive_work,
         node_mass,
         load_edges,
+        drive_memory,
         body_angle,
         body_spin,
         adaptive_step,

@@ -218,6 +218,10 @@ impl Simulation {
                 Rigid::Body(i) => check += new + s.body_angle[i],
             }
         }
+        if m.has_drive_memory {
+            crate::drives::controller::advance_all(m, s, sc, drift);
+            crate::drives::motor::advance_all(m, s, sc, kick);
+        }
         check
     }
 

@@ -89,6 +89,10 @@ pub struct Model {
     pub initial_positions: Vec<Vector2<f64>>,
     /// Stages this scene runs, in order.
     pub stages: Vec<Stage>,
+    /// Some pulley has a PI speed controller or a fluid-coupled motor, whose memory the
+    /// integrator advances after each step (`crate::drives::controller::advance_all`,
+    /// `crate::drives::motor::advance_all`).
+    pub has_drive_memory: bool,
     /// The time integrator of dynamic runs.
     pub integrator: Integrator,
     /// Layout of the generalized coordinates (belt nodes, then takeups, pulleys, idlers).
@@ -141,12 +145,28 @@ impl Model {
                 (belt, Some(rigid))
             }
         };
-        let pulleys = pulleys::compile(scene, belt.element_length);
+        let mut pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
         // and the uniform-mass fast path).
         let mut loads = crate::loads::compile(&scene.loads, &path, belt.element_length)?;
         loads.retain(|l| l.mass_per_length > 0.0);
+        if scene.pulleys.iter().any(|p| {
+            p.drive
+                .as_ref()
+                .is_some_and(|d| d.controller.is_some() || d.follow.is_some())
+        }) {
+            let load_belt = crate::loads::Belt {
+                nodes: belt.nodes,
+                l: belt.element_length,
+            };
+            let edges = crate::loads::initial_edges(&loads, &belt.initial_positions, load_belt);
+            let masses = crate::loads::node_masses(&belt.mass, &loads, &edges, load_belt);
+            crate::drives::controller::compile(scene, &mut pulleys, &idlers, masses.iter().sum())?;
+        }
+        let has_drive_memory = pulleys
+            .iter()
+            .any(|p| p.control.is_some() || p.motor.as_ref().is_some_and(|m| m.coupling.is_some()));
         let stages = stages::select(scene, &pulleys, &idlers, &loads);
         // With loads the node masses change during the run: never read them as uniform.
         let uniform = if loads.is_empty() && rigid.is_none() {
@@ -192,6 +212,7 @@ impl Model {
                 .map_or(Vec::new(), |r| r.torsional_damping.clone()),
             initial_angles: rigid.map_or(Vec::new(), |r| r.angles),
             stages,
+            has_drive_memory,
             integrator: Integrator::of(scene),
             dt: 0.0,
             dt_limit: 0.0,

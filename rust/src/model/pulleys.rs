@@ -1,6 +1,9 @@
 //! Compiled pulleys and their takeups, drives and brakes.
 
 use crate::contact::nonlinear::NonlinearContact;
+use crate::drives::controller::ControlModel;
+use crate::drives::motor::MotorModel;
+use crate::drives::sharing::Follower;
 use crate::friction::Prescribed;
 use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
 use nalgebra::Vector2;
@@ -50,6 +53,12 @@ pub struct PulleyModel {
     pub brake: Option<BrakeSpec>,
     /// Search margin beyond the radius for the contact window, m.
     pub window_margin: f64,
+    /// PI speed controller of the drive, if it has one (`crate::drives::controller`).
+    pub control: Option<ControlModel>,
+    /// Torque follower of another drive, if the drive is one (`crate::drives::sharing`).
+    pub follow: Option<Follower>,
+    /// DOL motor of the drive, if it has one (`crate::drives::motor`).
+    pub motor: Option<MotorModel>,
 }
 
 impl PulleyModel {
@@ -81,6 +90,9 @@ impl PulleyModel {
     #[inline]
     pub fn speed_hold(&self, time: f64, dt: f64) -> Option<Prescribed> {
         let drive = self.drive.as_ref()?;
+        if drive.controller.is_some() {
+            return None; // a PI controller: a torque, not a hold
+        }
         let curve = drive.start_curve.as_ref()?;
         Some(Prescribed {
             omega: curve.speed_at(time + 0.5 * dt) / self.radius,
@@ -98,7 +110,18 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            let drive_inertia = p.drive.as_ref().map_or(0.0, |d| d.inertia);
+            let motor = p
+                .drive
+                .as_ref()
+                .and_then(|d| d.motor.as_ref())
+                .map(MotorModel::compile);
+            // Motor and gearbox, the rotor when rigidly geared, the flywheel.
+            let drive_inertia = p.drive.as_ref().map_or(0.0, |d| {
+                let ratio = d.motor.as_ref().map_or(1.0, |m| m.gear_ratio);
+                d.inertia
+                    + ratio * ratio * d.flywheel
+                    + motor.as_ref().map_or(0.0, |m| m.reflected_inertia())
+            });
             PulleyModel {
                 name: if p.name.is_empty() {
                     format!("pulleys[{i}]")
@@ -136,6 +159,9 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 drive: p.drive.clone(),
                 brake: p.brake.clone(),
                 window_margin: l0,
+                control: None,
+                follow: None,
+                motor,
             }
         })
         .collect()

@@ -129,6 +129,32 @@ impl Model {
                 }
             }
         }
+        // PI speed controllers: K_p a damper and K_i a spring on the pulley alone.
+        for p in &self.pulleys {
+            if let Some(c) = &p.control {
+                let dt = crate::drives::controller::stable_step(c, p.inertia);
+                if dt < limit {
+                    limit = dt;
+                    cause = format!(
+                        "speed controller of pulley {}: K_p = {:.4e} N·m·s/rad, K_i = {:.4e} N·m/rad on I = {:.4e} kg·m²",
+                        p.name, c.kp, c.ki, p.inertia
+                    );
+                }
+            }
+        }
+        // DOL motors: the curve's slope (and a coupling's) is a damper.
+        for p in &self.pulleys {
+            if let Some(mm) = &p.motor {
+                let dt = mm.stable_step(p.inertia);
+                if dt < limit {
+                    limit = dt;
+                    cause = format!(
+                        "motor of pulley {}: the slope of its torque curve (or coupling) as a damper",
+                        p.name
+                    );
+                }
+            }
+        }
         let dt = match self.scene.solver.time_step {
             Some(dt) => {
                 if dt > limit {

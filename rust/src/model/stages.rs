@@ -30,6 +30,11 @@ pub enum Stage {
     RunningResistance,
     /// Drive torques T(t, ω) (thesis eq. 4.66).
     Drives,
+    /// DOL induction motors, rigid or through a fluid coupling (`crate::drives::motor`).
+    Motors,
+    /// PI speed controllers and torque followers (`crate::drives::controller`,
+    /// `crate::drives::sharing`): torques known before the friction solve.
+    SpeedControl,
     /// Linear viscous drag in the pulley bearings, −b·ω (`crate::drives::bearing`).
     BearingDrag,
     /// Stick-force friction between belt and pulleys (thesis eq. 4.76–4.94, figure 4.9).
@@ -57,6 +62,8 @@ impl Stage {
             Stage::IdlerContact => "idler_contact",
             Stage::RunningResistance => "running_resistance",
             Stage::Drives => "drives",
+            Stage::Motors => "motors",
+            Stage::SpeedControl => "speed_control",
             Stage::BearingDrag => "bearing_drag",
             Stage::PulleyFriction => "pulley_friction",
             Stage::IdlerFriction => "idler_friction",
@@ -104,6 +111,15 @@ pub(super) fn select(
     if pulleys.iter().any(|p| p.drive.is_some()) {
         stages.push(Stage::Drives);
     }
+    if pulleys.iter().any(|p| p.motor.is_some()) {
+        stages.push(Stage::Motors);
+    }
+    if pulleys
+        .iter()
+        .any(|p| p.control.is_some() || p.follow.is_some())
+    {
+        stages.push(Stage::SpeedControl);
+    }
     if pulleys.iter().any(|p| p.bearing_damping > 0.0) {
         stages.push(Stage::BearingDrag);
     }
@@ -115,7 +131,7 @@ pub(super) fn select(
     }
     if pulleys
         .iter()
-        .any(|p| p.drive.as_ref().is_some_and(|d| d.start_curve.is_some()))
+        .any(|p| p.drive.as_ref().is_some_and(|d| d.start_curve.is_some()) && p.control.is_none())
     {
         stages.push(Stage::SpeedDrives);
     }

@@ -240,6 +240,18 @@ impl PySimulation {
             .collect()
     }
 
+    /// Compiled PI speed controllers per pulley: (inertia kg·m², K_p N·m·s/rad, K_i N·m/rad,
+    /// droop rad/s per N·m), or None.
+    #[getter]
+    fn controllers(&self, py: Python<'_>) -> Vec<Option<(f64, f64, f64, f64)>> {
+        self.lock(py)
+            .model
+            .pulleys
+            .iter()
+            .map(|p| p.control.map(|c| (c.inertia, c.kp, c.ki, c.droop)))
+            .collect()
+    }
+
     /// Number of belt nodes (= elements).
     #[getter]
     fn nodes(&self, py: Python<'_>) -> usize {

@@ -5,6 +5,10 @@
 //! dataclasses of `beltrs.scene` take as theirs. No key of the format is named here.
 
 use crate::contact::nonlinear::NonlinearContact;
+use crate::drives::controller::SpeedController;
+use crate::drives::coupling::FluidCoupling;
+use crate::drives::motor::Motor;
+use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
@@ -187,6 +191,10 @@ pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResul
         "takeup" => read::<TakeupSpec>(obj, path).map(drop),
         "drive" => read::<DriveSpec>(obj, path).map(drop),
         "start_curve" => read::<StartCurve>(obj, path).map(drop),
+        "controller" => read::<SpeedController>(obj, path).map(drop),
+        "follow" => read::<TorqueFollow>(obj, path).map(drop),
+        "motor" => read::<Motor>(obj, path).map(drop),
+        "coupling" => read::<FluidCoupling>(obj, path).map(drop),
         "brake" => read::<BrakeSpec>(obj, path).map(drop),
         "idler" => read::<IdlerSpec>(obj, path).map(drop),
         "load" => read::<LoadSpec>(obj, path).map(drop),
@@ -241,6 +249,16 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         curve.set_item(key, py.None())?;
     }
     d.set_item("start_curve", curve)?;
+    d.set_item("controller", to_py(py, &SpeedController::default())?)?;
+    let follow = to_py(py, &TorqueFollow::default())?;
+    follow.set_item("master", py.None())?; // required
+    d.set_item("follow", follow)?;
+    let motor = to_py(py, &Motor::default())?;
+    for key in Motor::REQUIRED {
+        motor.set_item(key, py.None())?;
+    }
+    d.set_item("motor", motor)?;
+    d.set_item("coupling", to_py(py, &FluidCoupling::default())?)?;
     d.set_item("brake", to_py(py, &BrakeSpec::default())?)?;
     d.set_item("idler", to_py(py, &IdlerSpec::default())?)?;
     d.set_item("load", to_py(py, &LoadSpec::default())?)?;

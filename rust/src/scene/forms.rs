@@ -6,6 +6,9 @@
 
 use super::read::rule;
 use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, Table, Wrap};
+use crate::drives::controller::SpeedController;
+use crate::drives::motor::Motor;
+use crate::drives::sharing::TorqueFollow;
 use crate::start_curve::{StartCurve, StartShape};
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -340,6 +343,14 @@ pub struct DriveKeys {
     pub start_curve: Option<StartCurve>,
     /// Torque limit of a speed-controlled drive, N·m.
     pub max_torque: f64,
+    /// PI speed controller.
+    pub controller: Option<SpeedController>,
+    /// Torque follower of another drive.
+    pub follow: Option<TorqueFollow>,
+    /// DOL induction motor.
+    pub motor: Option<Motor>,
+    /// Flywheel on the high-speed shaft, kg·m².
+    pub flywheel: f64,
 }
 
 impl Default for DriveKeys {
@@ -361,6 +372,10 @@ impl From<DriveSpec> for DriveKeys {
             inertia: d.inertia,
             start_curve: d.start_curve,
             max_torque: d.max_torque,
+            controller: d.controller,
+            follow: d.follow,
+            motor: d.motor,
+            flywheel: d.flywheel,
         }
     }
 }
@@ -377,6 +392,10 @@ impl TryFrom<DriveKeys> for DriveSpec {
             inertia: k.inertia,
             start_curve: k.start_curve,
             max_torque: k.max_torque,
+            controller: k.controller,
+            follow: k.follow,
+            motor: k.motor,
+            flywheel: k.flywheel,
         })
     }
 }

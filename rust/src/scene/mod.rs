@@ -12,6 +12,9 @@
 //! the full path, the value and the rule. Adding a field: see "Adding a scene field" in
 //! `docs/scene-format.md`.
 
+use crate::drives::controller::SpeedController;
+use crate::drives::motor::Motor;
+use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::start_curve::StartCurve;
 use serde::{Deserialize, Serialize};
@@ -234,8 +237,21 @@ pub struct DriveSpec {
     /// Starting curve of a speed-controlled drive; `None`: torque-controlled. Default `None`.
     pub start_curve: Option<StartCurve>,
     /// Torque limit of a speed-controlled drive's motor (e.g. its breakdown torque), N·m,
-    /// > 0, may be +∞; only with `start_curve`. Default +∞.
+    /// > 0, may be +∞; only with `start_curve` or `follow`. Default +∞.
     pub max_torque: f64,
+    /// PI speed controller following `start_curve` (`crate::drives::controller`); `None`:
+    /// the ideal speed follower. Default `None`.
+    pub controller: Option<SpeedController>,
+    /// Master–slave torque sharing: this drive applies a ratio of another drive's torque
+    /// (`crate::drives::sharing`). Default `None`.
+    pub follow: Option<TorqueFollow>,
+    /// Induction motor started direct on line, with its gearbox and optional fluid
+    /// coupling (`crate::drives::motor`). Default `None`.
+    pub motor: Option<Motor>,
+    /// Flywheel on the drive's high-speed shaft (the driven side of a coupling, so it
+    /// turns with the belt), kg·m², ≥ 0: counts i²·flywheel at the pulley, i the motor's
+    /// `gear_ratio` (1 without a motor). Default 0.
+    pub flywheel: f64,
 }
 
 impl Default for DriveSpec {
@@ -247,6 +263,10 @@ impl Default for DriveSpec {
             inertia: 0.0,
             start_curve: None,
             max_torque: f64::INFINITY,
+            controller: None,
+            follow: None,
+            motor: None,
+            flywheel: 0.0,
         }
     }
 }

@@ -145,6 +145,22 @@ impl Scene {
                 return stick(format!("pulleys[{i}].friction.model"));
             }
             if let Some(d) = &p.drive {
+                // Their memory (PI integral, lagged torque, a coupled motor's speed) is
+                // advanced once per central-difference step.
+                let memory = [
+                    ("controller", d.controller.is_some()),
+                    ("follow", d.follow.is_some()),
+                    (
+                        "motor.coupling",
+                        d.motor.as_ref().is_some_and(|m| m.coupling.is_some()),
+                    ),
+                ];
+                if let Some((key, _)) = memory.iter().find(|(_, on)| *on) {
+                    return fixed(
+                        format!("pulleys[{i}].drive.{key}"),
+                        "a drive with memory (a PI controller's integral and torque lag, a torque follower, a fluid-coupled motor's speed), advanced once per step,",
+                    );
+                }
                 if d.start_curve.is_some() {
                     return fixed(
                         format!("pulleys[{i}].drive.start_curve"),

@@ -58,12 +58,12 @@ impl DriveSpec {
             ));
         }
         let Some(curve) = &self.start_curve else {
-            if self.max_torque != f64::INFINITY {
+            if self.max_torque != f64::INFINITY && self.follow.is_none() {
                 // It would be silently ignored.
                 return Err(BeltError::invalid(
                     format!("{f}.max_torque"),
                     self.max_torque,
-                    format!("limits a speed-controlled drive only: give {f}.start_curve, or leave max_torque out"),
+                    format!("limits a speed-controlled drive only (or a torque follower): give {f}.start_curve or {f}.follow, or leave max_torque out"),
                 ));
             }
             return Ok(());
@@ -362,6 +362,7 @@ impl Scene {
                     .validate(&format!("{f}.brake"), "time", "capacity", true)?;
             }
         }
+        crate::drives::sharing::validate(self)?;
         for (i, d) in self.idlers.iter().enumerate() {
             let f = format!("idlers[{i}]");
             check_finite(&format!("{f}.center[0]"), d.center[0])?;

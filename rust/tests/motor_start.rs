@@ -1,0 +1,246 @@
+//! Direct-on-line motor starts (`drives::motor`, `drives::coupling`, docs/drives.md):
+//! the Kloss curve through its rated and breakdown points, the run-up time of a rigid
+//! inertia against its quadrature, the steady running point through a fluid coupling, and
+//! the flywheel.
+use beltrs::drives::coupling::{CouplingModel, FluidCoupling};
+use beltrs::drives::motor::{Motor, MotorCurve, MotorModel};
+use beltrs::record::Channels;
+use beltrs::scene::{BeltParams, DriveSpec, PulleySpec, Scene, SolverParams, Wrap};
+use beltrs::{BeltError, Simulation, Stage};
+
+const INERTIA: f64 = 40.0;
+
+fn close(what: &str, got: f64, want: f64, tol: f64) {
+    assert!(
+        (got - want).abs() <= tol,
+        "{what}: got {got:e}, want {want:e} (diff {:e}, allowed {tol:e})",
+        (got - want).abs()
+    );
+}
+
+/// A 110 kW 4-pole motor: 1485 rpm, synchronous 1500 rpm, breakdown 2.5 × rated.
+fn motor() -> Motor {
+    Motor {
+        rated_power: 110e3,
+        rated_speed: 1485.0 * std::f64::consts::PI / 30.0,
+        synchronous_speed: 1500.0 * std::f64::consts::PI / 30.0,
+        gear_ratio: 20.0,
+        rotor_inertia: 1.2,
+        ..Default::default()
+    }
+}
+
+/// A 10 m loop without gravity whose pulley 0 does not touch the belt: a free inertia of
+/// 40 kg·m² driven by `drive`.
+fn rigid_scene(drive: DriveSpec, dt: f64) -> Scene {
+    let pulley = |center: [f64; 2]| PulleySpec {
+        center,
+        radius: 0.5,
+        inertia: Some(INERTIA),
+        contact_stiffness: 1e7,
+        ..Default::default()
+    };
+    Scene {
+        belt: BeltParams {
+            axial_stiffness: 1e6,
+            mass_per_length: 10.0,
+            elements: Some(60),
+            ..Default::default()
+        },
+        pulleys: vec![
+            PulleySpec {
+                contact_stiffness: 0.0,
+                drive: Some(drive),
+                ..pulley([0.0, 0.0])
+            },
+            pulley([10.0, 0.0]),
+        ],
+        gravity: 0.0,
+        solver: SolverParams {
+            time_step: Some(dt),
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+/// The Kloss curve passes through the rated point (T_r at n_r) and peaks at T_b = k·T_r at
+/// the breakdown slip; it is zero at synchronous speed and negative above.
+#[test]
+fn kloss_curve_through_rated_and_breakdown_points() {
+    let m = motor();
+    let curve = MotorCurve::kloss(&m);
+    let tr = m.rated_torque();
+    close("rated", curve.torque(m.rated_speed), tr, 1e-9 * tr);
+    let MotorCurve::Kloss {
+        breakdown_slip: sb,
+        synchronous_speed: ns,
+        ..
+    } = curve
+    else {
+        unreachable!()
+    };
+    close(
+        "breakdown",
+        curve.torque(ns * (1.0 - sb)),
+        2.5 * tr,
+        1e-9 * tr,
+    );
+    for ds in [-1e-3, 1e-3] {
+        assert!(curve.torque(ns * (1.0 - sb - ds)) < 2.5 * tr);
+    }
+    assert_eq!(curve.torque(ns), 0.0);
+    assert!(curve.torque(1.01 * ns) < 0.0);
+}
+
+/// Run-up of a rigid inertia: n' = i²·T(n)/J with J = I + i²·(J_r + J_f) at the pulley,
+/// so the time to reach the motor speed n* is ∫₀^{n*} J/(i²·T(n)) dn (Simpson, 20 000
+/// panels). The simulation's crossing time agrees to within the explicit scheme's O(Δt)
+/// (2 steps) plus the record interval (1 step).
+#[test]
+fn run_up_time_matches_the_quadrature() {
+    let dt = 1e-4;
+    let m = motor();
+    let flywheel = 0.8;
+    let drive = DriveSpec {
+        motor: Some(m.clone()),
+        flywheel,
+        ..Default::default()
+    };
+    let mut sim = Simulation::new(&rigid_scene(drive, dt)).unwrap();
+    assert!(sim.model.has_stage(Stage::Motors));
+    let i = m.gear_ratio;
+    let j = INERTIA + i * i * (m.rotor_inertia + flywheel);
+    close("pulley inertia", sim.model.pulleys[0].inertia, j, 1e-12 * j);
+    let curve = MotorCurve::kloss(&m);
+    let target = 0.95 * m.synchronous_speed;
+    let panels = 20_000;
+    let h = target / panels as f64;
+    let f = |n: f64| j / (i * i * curve.torque(n));
+    let mut quad = f(0.0) + f(target);
+    for k in 1..panels {
+        quad += f(k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    let quad = quad * h / 3.0;
+    sim.begin_recording(Channels::default(), 1, usize::MAX);
+    sim.advance((1.5 * quad / dt) as u64).unwrap();
+    let r = &sim.recording;
+    let k = (0..r.time.len())
+        .find(|&k| r.pulley_speed[2 * k] * i >= target)
+        .expect("never reached the speed");
+    close("run-up time", r.time[k], quad, 3.0 * dt);
+    // Finally at the no-load point: synchronous speed.
+    let last = r.pulley_speed[2 * (r.time.len() - 1)] * i;
+    assert!(last < m.synchronous_speed && last > 0.999 * m.synchronous_speed);
+}
+
+/// Through a fluid coupling against a viscous load b: at steady running the motor torque,
+/// the coupling torque and the load agree, T_m(n_in) = T_c(n_in, n_out) = b·ω/i with
+/// n_out = i·ω. The running point solved by bisection is reached to 1e-6 relative.
+#[test]
+fn coupled_start_settles_at_the_running_point() {
+    let dt = 1e-4;
+    let mut m = motor();
+    m.coupling = Some(FluidCoupling::default());
+    m.rotation = Wrap::Clockwise;
+    let b = 400.0; // N·m·s/rad at the pulley: 3 kN·m at 7.5 rad/s
+    let drive = DriveSpec {
+        motor: Some(m.clone()),
+        viscous: b,
+        ..Default::default()
+    };
+    let mut sim = Simulation::new(&rigid_scene(drive, dt)).unwrap();
+    sim.step((12.0 / dt) as u64).unwrap();
+    let i = m.gear_ratio;
+    let omega = sim.state.pulley_omega[0];
+    assert!(omega < 0.0, "turns clockwise");
+    let n_in = sim.state.drive_memory[0].motor_speed;
+    let n_out = -omega * i;
+    // Solve the running point: for an output speed n_out the load at the motor shaft is
+    // b·(n_out/i)/i; the coupling's input speed gives that torque; the motor must too.
+    let mm = MotorModel::compile(&m);
+    let c = CouplingModel::compile(&FluidCoupling::default(), m.rated_torque(), m.rated_speed);
+    let input_for = |out: f64| {
+        let load = b * out / (i * i);
+        let (mut lo, mut hi) = (out, 2.0 * m.synchronous_speed);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if c.torque(mid, out) < load {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let (mut lo, mut hi) = (0.0, m.synchronous_speed);
+    for _ in 0..200 {
+        let out = 0.5 * (lo + hi);
+        let nin = input_for(out);
+        if mm.curve.torque(nin) > b * out / (i * i) {
+            lo = out
+        } else {
+            hi = out
+        }
+    }
+    let out = 0.5 * (lo + hi);
+    close("output speed", n_out, out, 1e-6 * out);
+    close("input speed", n_in, input_for(out), 1e-6 * out);
+    let slip = (n_in - n_out) / n_in;
+    assert!(slip > 0.005 && slip < 0.05, "slip {slip}");
+}
+
+/// Bad motor and coupling data are refused, naming the field.
+#[test]
+fn bad_motors_are_refused() {
+    let refused = |m: Motor, field: &str| {
+        let drive = DriveSpec {
+            motor: Some(m),
+            ..Default::default()
+        };
+        match Simulation::new(&rigid_scene(drive, 1e-4)) {
+            Err(BeltError::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
+            other => panic!("{field}: {other:?}"),
+        }
+    };
+    let f = "pulleys[0].drive.motor";
+    refused(
+        Motor {
+            synchronous_speed: 100.0,
+            ..motor()
+        },
+        &format!("{f}.synchronous_speed"),
+    );
+    refused(
+        Motor {
+            breakdown_torque_ratio: 0.9,
+            ..motor()
+        },
+        &format!("{f}.breakdown_torque_ratio"),
+    );
+    refused(
+        Motor {
+            speed: Some(vec![0.0, 1.0]),
+            ..motor()
+        },
+        &format!("{f}.torque"),
+    );
+    refused(
+        Motor {
+            coupling: Some(FluidCoupling::default()),
+            rotor_inertia: 0.0,
+            ..motor()
+        },
+        &format!("{f}.rotor_inertia"),
+    );
+    refused(
+        Motor {
+            coupling: Some(FluidCoupling {
+                stall_torque_ratio: 40.0,
+                ..Default::default()
+            }),
+            ..motor()
+        },
+        &format!("{f}.coupling.stall_torque_ratio"),
+    );
+}
