@@ -200,6 +200,7 @@ ALLOWED = {
     (("pulleys", 1, "takeup", "travel_min"), -math.inf),
     (("pulleys", 1, "takeup", "travel_max"), math.inf),
     (("pulleys", 0, "drive", "max_torque"), math.inf),
+    (("pulleys", 1, "takeup", "max_speed"), math.inf),
 }
 
 

@@ -421,6 +421,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`motor`": ("motor", None),
         "`coupling`": ("coupling", None),
         "`brake`": ("brake", None),
+        "`holdback`": ("holdback", None),
         "`[[idlers]]`": ("idler", None),
         "`[[loads]]`": ("load", None),
         "`[solver]`": ("solver", None),

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, SceneError,
-                    Solver, StartCurve, Takeup)
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Load, NonlinearContact, Pulley, Recording, Scene,
+                    SceneError, Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 
@@ -30,6 +30,7 @@ TABLES = {
     "motor": beltrs.Motor,
     "coupling": beltrs.FluidCoupling,
     "brake": Brake,
+    "holdback": Holdback,
     "idler": Idler,
     "load": Load,
     "solver": Solver,

@@ -14,7 +14,8 @@ from .model import compile as compile  # not in __all__: a star import would sha
 from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
 from .result import Result, load_result
 from .scene import (
-    Belt, Brake, Drive, Friction, Idler, Load, NonlinearContact, Pulley, Recording, Scene, Solver, StartCurve, Takeup,
+    Belt, Brake, Drive, Friction, Holdback, Idler, Load, NonlinearContact, Pulley, Recording, Scene, Solver,
+    StartCurve, Takeup,
 )
 from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
@@ -34,6 +35,7 @@ __all__ = [
     "Drive",
     "FluidCoupling",
     "Friction",
+    "Holdback",
     "Idler",
     "IdlerContactWarning",
     "Load",

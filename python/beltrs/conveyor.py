@@ -37,8 +37,8 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .scene import Belt, Drive, Friction, Load, Pulley, Recording, Scene, Solver, SpeedController, StartCurve, Takeup
-from .scene import TorqueFollow
+from .scene import (Belt, Brake, Drive, Friction, Holdback, Load, Pulley, Recording, Scene, Solver, SpeedController,
+                    StartCurve, Takeup, TorqueFollow)
 from .statics import check
 
 __all__ = [
@@ -47,6 +47,7 @@ __all__ = [
     "Conveyor",
     "DriveSpec",
     "IdlerSet",
+    "StopSpec",
     "TakeupSpec",
     "load",
     "loads",
@@ -248,21 +249,34 @@ class DriveSpec:
                                  "leave start_curve and controller out")
 
 
+TAKEUP_KINDS = ("gravity", "winch", "fixed")
+
+
 @dataclass
 class TakeupSpec:
-    """A gravity takeup on the head or tail pulley, pulling in line with the strands (the
-    pulley slides away from the conveyor; each strand then carries exactly half the pull).
+    """A takeup on the head or tail pulley, pulling in line with the strands (the pulley
+    slides away from the conveyor; each strand then carries exactly half the pull;
+    ``docs/stops-takeups.md``).
 
     Attributes:
         location: ``"tail"`` (default) or ``"head"``.
         tension: tension it holds in each strand, N, > 0. Default None: chosen (see
             :meth:`Conveyor.takeup_tension`).
         travel: travel allowed each way from the start, m (hard stops). Default inf.
+        kind: ``"gravity"`` (default: a counterweight of 2 x tension / g), ``"winch"``
+            (pulls with 2 x tension, no faster than ``max_speed``) or ``"fixed"`` (a screw
+            takeup, tightened to 2 x tension when the scene is stabilised, locked in runs).
+        max_speed: winch speed limit, m/s, > 0. Winch only. Default inf.
+        lock_on_stop: lock the carriage when the conveyor's ``stop`` begins. Needs a
+            ``stop``; not for a fixed takeup. Default False.
     """
 
     location: str = "tail"
     tension: Optional[float] = None
     travel: float = math.inf
+    kind: str = "gravity"
+    max_speed: float = math.inf
+    lock_on_stop: bool = False
 
     def validate(self, where: str) -> None:
         if self.location not in LOCATIONS:
@@ -270,6 +284,66 @@ class TakeupSpec:
         if self.tension is not None:
             check(f"{where}.tension", self.tension, positive=True, unit="N per strand")
         check(f"{where}.travel", self.travel, positive=True, finite=False, unit="m")
+        if self.kind not in TAKEUP_KINDS:
+            raise SceneError(f"{where}.kind = {self.kind!r}: must be one of {', '.join(map(repr, TAKEUP_KINDS))}")
+        check(f"{where}.max_speed", self.max_speed, positive=True, finite=False, unit="m/s")
+        if self.max_speed != math.inf and self.kind != "winch":
+            raise SceneError(f"{where}.max_speed = {self.max_speed!r}: limits a winch only (kind = {self.kind!r})")
+        if not isinstance(self.lock_on_stop, bool):
+            raise SceneError(f"{where}.lock_on_stop = {self.lock_on_stop!r}: must be True or False")
+        if self.lock_on_stop and self.kind == "fixed":
+            raise SceneError(f"{where}.lock_on_stop = True: a fixed (screw) takeup is always locked in a run")
+
+
+@dataclass
+class StopSpec:
+    """A stop of the conveyor during the run (``docs/stops-takeups.md``): every drive loses
+    power at ``time`` and the belt coasts; with a ``brake`` location a brake is applied
+    ``brake_delay`` later on that drum, with a torque target (``brake_torque``) or a
+    deceleration target (``deceleration``, up to ``brake_torque``).
+
+    Attributes:
+        time: time the drives lose power, s (simulated time of the run), finite.
+        brake: ``"head"`` or ``"tail"``: the drum with the brake. Default None (coast).
+        brake_torque: braking torque at the drum, N*m, > 0. Default None: with a
+            ``deceleration``, :meth:`Conveyor.brake_torque_for` (1.5 x (M_eq x a + the
+            material's pull on the slope) x drum radius); needed without one.
+        deceleration: belt deceleration target at the drum, m/s^2, > 0. Default None (a
+            torque brake).
+        brake_delay: time from the power failure to the brake's application, s, >= 0.
+            Default 0.
+        brake_rise: time the brake torque takes to build up, s, >= 0. Default 0.
+    """
+
+    time: float = 0.0
+    brake: Optional[str] = None
+    brake_torque: Optional[float] = None
+    deceleration: Optional[float] = None
+    brake_delay: float = 0.0
+    brake_rise: float = 0.0
+
+    def validate(self, where: str) -> None:
+        check(f"{where}.time", self.time, low=-math.inf, unit="s")
+        brake_keys = {"brake_torque": self.brake_torque, "deceleration": self.deceleration}
+        if self.brake is None:
+            for key, value in brake_keys.items():
+                if value is not None:
+                    raise SceneError(f"{where}.{key} = {value!r}: needs {where}.brake (the drum with the brake)")
+            for key in ("brake_delay", "brake_rise"):
+                if getattr(self, key) != 0.0:
+                    raise SceneError(f"{where}.{key} = {getattr(self, key)!r}: needs {where}.brake "
+                                     "(the drum with the brake)")
+            return
+        if self.brake not in LOCATIONS:
+            raise SceneError(f"{where}.brake = {self.brake!r}: must be \"head\", \"tail\" or None (coast)")
+        if self.brake_torque is not None:
+            check(f"{where}.brake_torque", self.brake_torque, positive=True, unit="N*m")
+        if self.deceleration is not None:
+            check(f"{where}.deceleration", self.deceleration, positive=True, unit="m/s^2")
+        elif self.brake_torque is None:
+            raise SceneError(f"{where}.brake_torque = None: give the brake torque (N*m) or a deceleration (m/s^2)")
+        check(f"{where}.brake_delay", self.brake_delay, unit="s")
+        check(f"{where}.brake_rise", self.brake_rise, unit="s")
 
 
 @dataclass
@@ -298,6 +372,9 @@ class Conveyor:
         f: DIN 22101 artificial friction coefficient at every idler. Default 0.02.
         drives: :class:`DriveSpec` list. Default one head drive.
         takeup: :class:`TakeupSpec`. Default a tail gravity takeup with a chosen tension.
+        stop: :class:`StopSpec`: power failure (and brake) during the run. Default None.
+        holdback: ``"head"`` or ``"tail"``: a holdback (backstop) on that drum against
+            the belt running back, e.g. on an incline. Default None.
         pulley_radius: head and tail drum radius, m. Default None: :func:`pulley_radius_for`.
         lagging: belt friction on the drums, (static, kinetic). Default (0.4, 0.35), rubber
             lagging.
@@ -322,6 +399,8 @@ class Conveyor:
     f: float = 0.02
     drives: list[DriveSpec] = field(default_factory=lambda: [DriveSpec()])
     takeup: TakeupSpec = field(default_factory=TakeupSpec)
+    stop: Optional[StopSpec] = None
+    holdback: Optional[str] = None
     pulley_radius: Optional[float] = None
     lagging: Sequence[float] = (0.4, 0.35)
     element_length: Optional[float] = None
@@ -436,6 +515,14 @@ class Conveyor:
         if abs(shares - 1) > 1e-9:
             raise SceneError(f"drives[*].share = {[d.share for d in self.drives]!r}: must add up to 1")
         self.takeup.validate("takeup")
+        if self.stop is not None:
+            if not isinstance(self.stop, StopSpec):
+                raise SceneError(f"stop = {self.stop!r}: expected a beltrs.conveyor.StopSpec or None")
+            self.stop.validate("stop")
+        if self.takeup.lock_on_stop and self.stop is None:
+            raise SceneError("takeup.lock_on_stop = True: needs a stop (Conveyor.stop) to lock on")
+        if self.holdback is not None and self.holdback not in LOCATIONS:
+            raise SceneError(f"holdback = {self.holdback!r}: must be \"head\", \"tail\" or None")
         prof = self.carry_profile  # validates the curve radii (SceneError naming them)
         r = self.radius
         for i, radius in enumerate(self.curve_radii):
@@ -588,7 +675,9 @@ class Conveyor:
         Args:
             elements: belt elements; overrides the chosen element length. Default None.
             time_step_fraction: of the stability limit. Default 0.5.
-            duration: ``recording.duration``, s. Default: the longest start curve + 5 s.
+            duration: ``recording.duration``, s. Default: the longest start curve + 5 s, or
+                with a ``stop``, at least the stop time + 1.5 x the rigid-belt coasting time
+                M_eq v / F_U + 5 s.
         """
         self.validate()
         prof = self.carry_profile
@@ -610,13 +699,12 @@ class Conveyor:
             drive = by_loc.get(name)
             takeup = None
             if self.takeup.location == name:
-                travel = float(self.takeup.travel)
-                takeup = Takeup(counterweight=2 * t_up / self.gravity, direction=direction,
-                                travel_min=-travel, travel_max=travel)
+                takeup = self._takeup(t_up, direction)
             pulleys[name] = Pulley(
                 name=name, center=_round(c), radius=r, mass=drum_mass, inertia=0.8 * drum_mass * r * r,
                 friction=lag, contact_stiffness=1e8, takeup=takeup,
                 drive=None if drive is None else self._drive(drive, pdyn, r))
+            self._stop_on(pulleys, name)
         carry_guides, return_guides = _guides(prof, r)
         plist = [pulleys["tail"], *return_guides, pulleys["head"], *reversed(carry_guides)]
 
@@ -649,14 +737,61 @@ class Conveyor:
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le))
-        longest = max((self._curve(d).end for d in self.drives), default=0.0)
+        longest = max((self._curve(d).end for d in self.drives), default=0.0) + 5.0
+        if self.stop is not None:
+            # Run past the stop for 1.5 x the rigid-belt coasting time M_eq v / F_U (+ 5 s).
+            coast = self.moving_mass() * self.speed / max(self._running_force(), 1.0)
+            longest = max(longest, float(self.stop.time) + 1.5 * coast + 5.0)
         # A loaded incline has no equilibrium on frictionless drums (the belt would run back):
         # relax with friction, the held drive drum gripping the belt (stabilise(friction=True)).
         inclined = any(abs(float(a[1]) - float(b[1])) > 0 for a, b in zip(pts[:-1], pts[1:]))
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
-                     recording=Recording(duration=longest + 5.0 if duration is None else duration, interval=0.05,
+                     recording=Recording(duration=longest if duration is None else duration, interval=0.05,
                                          channels=("tension", "node_position"), stabilise_friction=inclined))
+
+    def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
+        """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""
+        spec = self.takeup
+        travel = float(spec.travel)
+        limits = dict(direction=direction, travel_min=-travel, travel_max=travel, lock_on_stop=spec.lock_on_stop)
+        if spec.kind == "gravity":
+            return Takeup(counterweight=2 * t_up / self.gravity, **limits)
+        return Takeup(kind=spec.kind, force=2 * t_up, max_speed=spec.max_speed, **limits)
+
+    def _stop_on(self, pulleys: dict[str, Pulley], name: str) -> None:
+        """Add the stop's power failure, brake and the holdback to drum ``name``."""
+        p = pulleys[name]
+        changes: dict[str, Any] = {}
+        stop = self.stop
+        if stop is not None and p.drive is not None:
+            changes["drive"] = replace(p.drive, power_off=float(stop.time))
+        if stop is not None and stop.brake == name:
+            torque = stop.brake_torque
+            if torque is None:
+                torque = self.brake_torque_for(float(stop.deceleration))
+            changes["brake"] = Brake(torque=float(torque), deceleration=stop.deceleration,
+                                     applied=float(stop.time) + float(stop.brake_delay), rise=float(stop.brake_rise))
+        if self.holdback == name:
+            changes["holdback"] = Holdback(forward="cw")  # the builder's drums turn clockwise
+        if changes:
+            pulleys[name] = replace(p, **changes)
+
+    def material_lift(self) -> float:
+        """Pull of the material along the belt on the loaded length, N: m'_L · g · ΔH, ΔH the
+        rise from the loading to the discharge point (negative on a decline): what a
+        holdback or a brake must hold at rest."""
+        prof = self.carry_profile
+        end = prof.length if self.discharge is None else float(self.discharge)
+        rise = float(prof.point(end)[0][1]) - float(prof.point(float(self.loading))[0][1])
+        return self.material_mass * self.gravity * rise
+
+    def brake_torque_for(self, deceleration: float) -> float:
+        """Brake torque at a drum for a stop at ``deceleration`` (m/s²), N·m: 1.5 × (M_eq · a
+        + |m'_L · g · ΔH|) × drum radius, the rigid belt's braking force plus the material's
+        pull on the slope (:meth:`material_lift`), with 50 % margin."""
+        a = check("deceleration", deceleration, positive=True, unit="m/s^2")
+        return 1.5 * (self.moving_mass() * a + abs(self.material_lift())) * self.radius
 
     def _curve(self, d: DriveSpec) -> StartCurve:
         if d.follow is not None:  # a follower runs on its master's curve
@@ -811,8 +946,8 @@ def _piece_ends(prof: Profile) -> list[float]:
 # --- TOML -------------------------------------------------------------------------------
 def loads(text: str) -> Conveyor:
     """A :class:`Conveyor` from the text of a TOML file with a ``[conveyor]`` table (keys:
-    the Conveyor fields; ``[conveyor.carry]``, ``[conveyor.returns]``, ``[conveyor.takeup]``
-    tables; ``[[conveyor.drives]]`` with an optional ``start_curve`` table). Unknown keys
+    the Conveyor fields; ``[conveyor.carry]``, ``[conveyor.returns]``, ``[conveyor.takeup]``,
+    ``[conveyor.stop]`` tables; ``[[conveyor.drives]]`` with an optional ``start_curve`` table). Unknown keys
     and wrong types raise :class:`beltrs.SceneError` naming the path."""
     from .scene_file import _need_reader
 
@@ -858,7 +993,7 @@ def _read(table: Any) -> Conveyor:
         return dict(data)
 
     kw = fields_of(Conveyor, table, "conveyor")
-    for key, cls in (("carry", IdlerSet), ("returns", IdlerSet), ("takeup", TakeupSpec)):
+    for key, cls in (("carry", IdlerSet), ("returns", IdlerSet), ("takeup", TakeupSpec), ("stop", StopSpec)):
         if key in kw:
             kw[key] = cls(**fields_of(cls, kw[key], f"conveyor.{key}"))
     if "drives" in kw:

@@ -37,6 +37,7 @@ __all__ = [
     "Drive",
     "FluidCoupling",
     "Friction",
+    "Holdback",
     "Idler",
     "Load",
     "NonlinearContact",
@@ -126,20 +127,39 @@ class Friction(_Table):
 @dataclass
 @_engine_table("takeup")
 class Takeup(_Table):
-    """Gravity takeup: the pulley translates on a line (thesis eq. 4.63).
+    """A takeup: the pulley translates on a line (thesis eq. 4.63), pulled by a
+    counterweight (``kind="gravity"``), a winch (``"winch"``) or set by a screw
+    (``"fixed"``); see ``docs/stops-takeups.md``.
 
     Attributes:
-        counterweight: counterweight mass, kg. Default 0.
+        kind: ``"gravity"`` (default): the counterweight's weight pulls. ``"winch"``: a
+            winch pulls with ``force`` while the carriage moves no faster than
+            ``max_speed``. ``"fixed"``: a screw takeup, locked in dynamic runs;
+            :meth:`beltrs.Simulation.stabilise` tightens it to ``force`` (the screw is set at
+            rest).
+        counterweight: counterweight mass, kg, >= 0; it moves with the pulley. Gravity
+            takeups only. Default 0.
         direction: unit vector of the pull, dimensionless. Default (0, -1) (hanging).
         travel_min: lowest travel along ``direction`` from the start, m (hard stop, <= 0).
             Default -inf.
         travel_max: highest travel, m (>= 0). Default +inf.
+        force: pull of a winch or screw takeup along ``direction``, N, > 0 (twice the strand
+            tension when both strands run parallel to the line). Required for those kinds,
+            refused for a gravity takeup. Default None.
+        max_speed: winch speed limit, m/s, > 0: the carriage never moves faster; at the
+            limit the tension departs from ``force``. Winch only. Default inf.
+        lock_on_stop: lock the carriage where it is when the scene's first stop begins (the
+            earliest drive ``power_off`` or brake ``applied`` time). Default False.
     """
 
+    kind: str
     counterweight: float
     direction: tuple[float, float]
     travel_min: float
     travel_max: float
+    force: Optional[float]
+    max_speed: float
+    lock_on_stop: bool
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -394,6 +414,11 @@ class Drive(_Table):
         flywheel: flywheel on the drive's high-speed shaft (driven side of a coupling),
             kg*m^2, >= 0; counts gear_ratio^2 * flywheel at the pulley (gear ratio of
             ``motor``, 1 without one). Default 0.
+        power_off: time the motor loses power (a power failure or a stop), s, absolute
+            simulated time: from then on it supplies no torque (no torque table, no
+            speed-controlled hold, no PI controller or follower torque; a DOL motor is
+            switched off and its rotor coasts) and the pulley coasts; the load torque
+            -viscous*omega stays. Default None (never). ``docs/stops-takeups.md``.
     """
 
     time: Sequence[float]
@@ -408,6 +433,7 @@ class Drive(_Table):
     follow: Optional[TorqueFollow]
     motor: Optional[Motor]
     flywheel: float
+    power_off: Optional[float]
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -437,15 +463,54 @@ class Drive(_Table):
 @dataclass
 @_engine_table("brake")
 class Brake(_Table):
-    """Coulomb brake that holds the pulley at rest up to its capacity.
+    """A brake: a friction torque that opposes the pulley's rotation and holds it at rest
+    up to its capacity (stick/slip: it never reverses the motion and never chatters at
+    rest; ``docs/stops-takeups.md``). Give either the ``time``/``capacity`` table or a
+    ``torque`` applied at ``applied`` (built up over ``rise``); with ``deceleration`` too,
+    the brake supplies only the torque (up to ``torque``) that slows the belt at the pulley
+    surface at that rate.
 
     Attributes:
-        time: abscissae, s. Default [0].
-        capacity: braking/holding torque capacity, N*m, >= 0. Default [0].
+        time: abscissae of the capacity table, s. Default [0].
+        capacity: braking/holding torque capacity against time, N*m, >= 0. Default [0].
+            Leave the table at its default with ``torque``.
+        torque: braking torque from ``applied`` on, N*m, > 0. Default None (the table).
+        deceleration: deceleration target of the belt at the pulley surface, m/s^2, > 0;
+            only with ``torque`` (the brake's capacity). Default None (a torque brake).
+        applied: time the brake is applied, s (absolute simulated time); released before.
+            Only with ``torque``. Default 0.
+        rise: time the torque takes to build up from 0 (linear), s, >= 0. Only with
+            ``torque``. Default 0.
     """
 
     time: Sequence[float]
     capacity: Sequence[float]
+    torque: Optional[float]
+    deceleration: Optional[float]
+    applied: float
+    rise: float
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
+@_engine_table("holdback")
+class Holdback(_Table):
+    """A holdback (backstop): a one-way clutch on a pulley that lets it turn forwards
+    freely and stops it turning backwards, e.g. on an inclined conveyor after a stop
+    (``docs/stops-takeups.md``). Its torque is recorded with the brake's
+    (``Result.brake_torque``).
+
+    Attributes:
+        forward: ``"ccw"`` or ``"cw"``, the sense the pulley turns when the conveyor runs
+            forward (the head drive of a conveyor carrying towards +x on its top strand
+            turns ``"cw"``). Required.
+        capacity: largest torque it takes against reverse rotation, N*m, > 0. Default inf.
+    """
+
+    forward: Optional[str]
+    capacity: float
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -510,6 +575,7 @@ class Pulley(_Table):
         takeup: gravity takeup, if the pulley translates. Default None.
         drive: drive torque. Default None.
         brake: brake. Default None.
+        holdback: holdback against reverse rotation (:class:`Holdback`). Default None.
         name: label for messages and results; unique unless empty. Default "".
         nonlinear_contact: Kubas's nonlinear contact law (:class:`NonlinearContact`) in
             place of the linear one. Default None (linear). With it, leave
@@ -530,6 +596,7 @@ class Pulley(_Table):
     takeup: Optional[Takeup]
     drive: Optional[Drive]
     brake: Optional[Brake]
+    holdback: Optional[Holdback]
     name: str
     nonlinear_contact: Optional[NonlinearContact]
 

@@ -21,7 +21,7 @@ from ._checks import warn_scene
 from ._progress import make_bar
 from .model import Model
 from .result import Result
-from .scene import Drive, Friction, Scene
+from .scene import Brake, Drive, Friction, Holdback, Scene
 
 __all__ = ["DEFAULT_MAX_MEMORY", "DEFAULT_MAX_WALL_TIME", "MAX_RECORD_INTERVAL", "CheckpointWarning", "Simulation"]
 
@@ -754,6 +754,39 @@ class Simulation:
         if friction is not None and not isinstance(friction, Friction):
             raise _beltrs.SceneError(f"friction = {friction!r}: must be a beltrs.Friction or None")
         self._with_pulley(pulley, friction=friction)
+
+    def set_brake(self, pulley: Union[int, str], brake: Optional[Brake]) -> None:
+        """Set (or remove, with None) the brake of ``pulley``; its ``applied`` time is
+        absolute simulated time (a brake applied now: ``Brake(torque=..., applied=sim.time)``;
+        ``docs/stops-takeups.md``)."""
+        if brake is not None and not isinstance(brake, Brake):
+            raise _beltrs.SceneError(f"brake = {brake!r}: must be a beltrs.Brake or None")
+        self._with_pulley(pulley, brake=brake)
+
+    def set_holdback(self, pulley: Union[int, str], holdback: Optional[Holdback]) -> None:
+        """Set (or remove, with None) the holdback of ``pulley``."""
+        if holdback is not None and not isinstance(holdback, Holdback):
+            raise _beltrs.SceneError(f"holdback = {holdback!r}: must be a beltrs.Holdback or None")
+        self._with_pulley(pulley, holdback=holdback)
+
+    def power_off(self, pulley: Union[int, str, None] = None, at: Optional[float] = None) -> None:
+        """Cut the power of the drive of ``pulley`` (every drive if None) at time ``at`` (s,
+        absolute simulated time; default now, :attr:`time`): from then on the motor
+        supplies no torque and the belt coasts (``Drive.power_off``)."""
+        at = self.time if at is None else _real("at", at, "must be a finite number (s)")
+        if pulley is None:
+            targets = [j for j, p in enumerate(self.scene.pulleys) if p.drive is not None]
+            if not targets:
+                raise _beltrs.SceneError("pulley = None: the scene has no drive to switch off")
+        else:
+            j = self._pulley(pulley)
+            if self.scene.pulleys[j].drive is None:
+                raise _beltrs.SceneError(f"pulleys[{j}].drive = None: this pulley has no drive to switch off")
+            targets = [j]
+        pulleys = list(self.scene.pulleys)
+        for j in targets:
+            pulleys[j] = replace(pulleys[j], drive=replace(pulleys[j].drive, power_off=at))
+        self.set_scene(replace(self.scene, pulleys=pulleys))
 
     # --- profiling ---------------------------------------------------------------------
     def set_profiling(self, on: bool) -> None:

@@ -75,7 +75,7 @@ pub struct Scratch {
     pub friction: Vec<FrictionOutcome>,
     /// Drive torque on each pulley, N·m.
     pub drive_torque: Vec<f64>,
-    /// Brake torque on each pulley, N·m.
+    /// Brake torque on each pulley (brake and holdback), N·m.
     pub brake_torque: Vec<f64>,
     /// Bearing drag torque on each pulley, N·m (−b·ω).
     pub bearing_torque: Vec<f64>,
@@ -223,7 +223,8 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::PulleyFriction => crate::friction::stage::pulley_friction(cx),
             Stage::IdlerFriction => crate::friction::stage::idler_friction(cx),
             Stage::SpeedDrives => crate::drives::hold::speed_drives(cx),
-            Stage::Brakes => crate::drives::hold::brakes(cx),
+            Stage::Brakes => crate::drives::brake::brakes(cx),
+            Stage::Holdbacks => crate::drives::holdback::holdbacks(cx),
         }
         if let (Some(t0), Some(profile)) = (started, profile.as_mut()) {
             profile[k] += t0.elapsed().as_secs_f64();

@@ -105,6 +105,12 @@ impl Simulation {
                 )));
             }
         }
+        // A changed brake begins its deceleration ramp anew.
+        for (j, (a, b)) in model.pulleys.iter().zip(&self.model.pulleys).enumerate() {
+            if a.brake != b.brake {
+                self.state.brake_ramp[j] = 0.0;
+            }
+        }
         let profile = self.profile.as_ref().map(|_| vec![0.0; model.stages.len()]);
         // The belt masses or the loads may have changed: re-place the material at once
         // (the nodes keep their velocities); changed load points are found anew.

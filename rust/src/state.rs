@@ -70,6 +70,10 @@ pub struct State {
     /// Steps the adaptive integrator rejected (and retried smaller) since the model was
     /// compiled.
     pub rejected_steps: u64,
+    /// Speed at which each pulley's deceleration brake began its ramp, rad/s (the pulley's
+    /// speed in the first step from its `applied` time); 0 before, and for other pulleys
+    /// (`crate::drives::brake`).
+    pub brake_ramp: Vec<f64>,
     /// Memory of each pulley's PI speed controller (error integral, lagged torque; zero
     /// for pulleys without one).
     pub drive_memory: Vec<DriveMemory>,
@@ -110,6 +114,7 @@ impl State {
             adaptive_step: 0.0,
             accepted_steps: 0,
             rejected_steps: 0,
+            brake_ramp: vec![0.0; model.pulleys.len()],
             drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
         }
     }

@@ -28,6 +28,7 @@ fn busy_scene() -> Scene {
     });
     s.pulleys[1].brake = Some(BrakeSpec {
         capacity: Table::constant(1e3),
+        ..Default::default()
     });
     // An idler touching the right-hand strand (x = 5) from outside.
     s.idlers.push(IdlerSpec {

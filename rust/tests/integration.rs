@@ -20,3 +20,4 @@ mod run_contract;
 mod scene_schema;
 mod speed_control;
 mod speed_drive;
+mod stops;

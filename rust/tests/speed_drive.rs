@@ -590,6 +590,7 @@ fn conflicting_drive_settings_are_refused() {
     let mut s = base.clone();
     s.pulleys[0].brake = Some(BrakeSpec {
         capacity: Table::constant(1e3),
+        ..Default::default()
     });
     expect(s, "pulleys[0].brake", "cannot also have a brake");
     let mut s = base.clone();

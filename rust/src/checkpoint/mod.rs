@@ -28,10 +28,12 @@
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
 //! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a version 4 file that ends before it reads as zero memory); from
-//! version 5, the rigid belt bodies' angles and angular speeds (empty arrays for the node
-//! belt), the adaptive integrator's next step and its accepted and rejected step counts.
-//! Strings, byte strings and arrays are a `u64` length followed by the items.
+//! within version 4, so a version 4 file that ends before it reads as zero memory), the
+//! speed at which each pulley's deceleration brake began its ramp (added within version 4
+//! after the drive memory; a version 4 file that ends before it reads as no ramp begun);
+//! from version 5, the rigid belt bodies' angles and angular speeds (empty arrays for the
+//! node belt), the adaptive integrator's next step and its accepted and rejected step
+//! counts. Strings, byte strings and arrays are a `u64` length followed by the items.
 //!
 //! Version 5 added the formulation and integrator tags and the state of the rigid-body
 //! belt and of the adaptive integrator; version 4 files (node belt, central differences)
@@ -238,6 +240,7 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("node masses", s.node_mass.len(), n),
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
+        ("brake ramps", s.brake_ramp.len(), p),
         (
             "belt body angles",
             s.body_angle.len(),
@@ -483,6 +486,8 @@ fn write_state(w: &mut Writer, s: &State) {
         w.f64(c.torque);
         w.f64(c.motor_speed);
     }
+    // Added within version 4 after the drive memory: older version 4 files end before it.
+    w.f64s(&s.brake_ramp);
     w.f64s(&s.body_angle);
     w.f64s(&s.body_spin);
     w.f64(s.adaptive_step);
@@ -548,6 +553,13 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         vec![DriveMemory::default(); pulley_omega.len()]
     };
+    // Added within version 4 after the drive memory (absent from older version 4 files:
+    // none begun); always in version 5.
+    let brake_ramp = if r.version >= 5 || r.pos < r.bytes.len() {
+        r.f64s("brake ramps")?
+    } else {
+        vec![0.0; pulley_omega.len()]
+    };
     let (body_angle, body_spin, adaptive_step, accepted_steps, rejected_steps) = if r.version >= 5 {
         (
             r.f64s("belt body angles")?,
@@ -580,6 +592,7 @@ fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         adaptive_step,
         accepted_steps,
         rejected_steps,
+        brake_ramp,
     })
 }
 

@@ -266,6 +266,11 @@ pub fn speed_control(cx: &mut StageContext<'_>) {
         let Some(curve) = &d.start_curve else {
             continue;
         };
+        if !d.powered(s.time) {
+            // Power failure (`power_off`): no torque, and the controller stops integrating.
+            sc.control[j] = ControlOutput::default();
+            continue;
+        }
         let mem = s.drive_memory[j];
         let omega_ref = curve.speed_at(reference_time) / p.radius;
         let (command, limited) = c.command(omega_ref - s.pulley_omega[j], mem.integral);

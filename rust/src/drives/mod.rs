@@ -1,11 +1,16 @@
 //! Drives and everything else that turns or moves a pulley besides the belt: torque
-//! drives, speed-controlled drives following a starting curve, brakes, and gravity
-//! takeups.
+//! drives, speed-controlled drives following a starting curve, brakes, holdbacks, and
+//! gravity, winch and screw takeups.
 //!
 //! - [`torque`]: the `drives` stage, T(t, ω).
 //! - [`bearing`]: the `bearing_drag` stage, viscous drag −b·ω in the pulley bearings.
-//! - [`hold`]: the `speed_drives` and `brakes` stages, prescribed motion within a torque.
-//! - [`takeup`]: the gravity takeup's translation, moved by the integrator.
+//! - [`hold`]: the `speed_drives` stage and the shared solve of a prescribed motion within
+//!   a torque range.
+//! - [`brake`]: the `brakes` stage, brakes with a torque or a deceleration target, and the
+//!   combination of a pulley's holders.
+//! - [`holdback`]: the `holdbacks` stage, one-way clutches against reverse rotation.
+//! - [`takeup`]: the takeups' translation (moved by the integrator): stops, locks, winch
+//!   speed limit.
 //! - [`start_curve`]: conveyor starting curves (Harrison, Nordell, cubic, linear).
 //! - [`controller`]: the `speed_control` stage, PI speed controllers (torque limit, droop,
 //!   torque lag) and their gains from physics.
@@ -14,9 +19,11 @@
 //!   or a table) through a gearbox; [`coupling`]: fluid couplings.
 
 pub mod bearing;
+pub mod brake;
 pub mod controller;
 pub mod coupling;
 pub mod hold;
+pub mod holdback;
 pub mod motor;
 pub mod resistance;
 pub mod sharing;

@@ -361,7 +361,8 @@ pub fn motors(cx: &mut StageContext<'_>) {
     }
     for (j, p) in m.pulleys.iter().enumerate() {
         let Some(mm) = &p.motor else { continue };
-        let on = s.time >= mm.start;
+        // Switched on at `start`, off again at the drive's `power_off` (the rotor then coasts).
+        let on = s.time >= mm.start && p.drive.as_ref().is_none_or(|d| d.powered(s.time));
         let shaft = mm.factor * s.pulley_omega[j];
         let (motor_torque, coupling_torque) = match &mm.coupling {
             None => {

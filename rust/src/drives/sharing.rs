@@ -209,6 +209,9 @@ fn master_torque(p: &PulleyModel, k: usize, s: &State, sc: &Scratch) -> f64 {
 pub fn follow_torques(m: &crate::model::Model, s: &State, sc: &mut Scratch) {
     for (j, p) in m.pulleys.iter().enumerate() {
         let Some(f) = p.follow else { continue };
+        if p.drive.as_ref().is_some_and(|d| !d.powered(s.time)) {
+            continue; // this drive has lost power (`power_off`)
+        }
         let limit = p.drive.as_ref().map_or(f64::INFINITY, |d| d.max_torque);
         let torque = f.factor * master_torque(&m.pulleys[f.master], f.master, s, sc);
         sc.drive_torque[j] += torque.clamp(-limit, limit);

@@ -35,24 +35,34 @@ pub struct StickScratch {
 }
 
 /// Prescribed motion of a pulley with a limited torque: whatever holds the pulley (a brake
-/// that stops it, a speed-controlled drive that makes it follow a starting curve) supplies
-/// the torque that gives the pulley the prescribed speed at the end of the step, if that
-/// torque is within its capacity; otherwise it supplies its capacity (in the direction of
-/// the torque needed) and the pulley moves freely under it.
+/// that stops it, a speed-controlled drive that makes it follow a starting curve, a
+/// holdback that stops it turning backwards) supplies the torque that gives the pulley the
+/// prescribed speed at the end of the step, if that torque lies within its range;
+/// otherwise it supplies the nearest end of the range and the pulley moves freely under it.
+/// A two-sided range ±capacity is a brake or a drive; a one-sided one (e.g. [0, capacity])
+/// is a holder that can act one way only (a holdback, a brake that must not drive).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Prescribed {
     /// Angular speed the pulley is to have at t + Δt/2, rad/s.
     pub omega: f64,
-    /// Largest torque the holder can supply, N·m, ≥ 0 (may be +∞).
-    pub capacity: f64,
+    /// Smallest torque the holder can supply, N·m, ≤ `max_torque` (may be −∞).
+    pub min_torque: f64,
+    /// Largest torque the holder can supply, N·m (may be +∞).
+    pub max_torque: f64,
 }
 
 impl Prescribed {
     /// A brake of this capacity (N·m) holding the pulley at rest.
     pub fn at_rest(capacity: f64) -> Prescribed {
+        Prescribed::within(0.0, capacity)
+    }
+
+    /// Speed `omega` (rad/s) with a torque of at most `capacity` (N·m, ≥ 0) either way.
+    pub fn within(omega: f64, capacity: f64) -> Prescribed {
         Prescribed {
-            omega: 0.0,
-            capacity,
+            omega,
+            min_torque: -capacity,
+            max_torque: capacity,
         }
     }
 
@@ -68,14 +78,16 @@ impl Prescribed {
     }
 
     /// The holder's torque when `needed` (N·m) is the torque that gives the prescribed
-    /// motion: (`needed`, true) if within the capacity, else (±capacity in the direction of
-    /// `needed`, false).
+    /// motion: (`needed`, true) if within the range, else (the nearest end of the range,
+    /// false).
     #[inline]
     pub fn limit(&self, needed: f64) -> (f64, bool) {
-        if needed.abs() <= self.capacity {
-            (needed, true)
+        if needed < self.min_torque {
+            (self.min_torque, false)
+        } else if needed > self.max_torque {
+            (self.max_torque, false)
         } else {
-            (self.capacity.copysign(needed), false)
+            (needed, true)
         }
     }
 }

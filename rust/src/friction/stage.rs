@@ -38,6 +38,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         return;
     }
     let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
+    let kick = cx.dt;
     let (m, s, sc) = (cx.model, &*cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
         let FrictionModel::StickForce {
@@ -59,7 +60,8 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             mu_static: static_coefficient,
             mu_kinetic: kinetic_coefficient,
             prescribed: if drives {
-                p.brake_hold(s.time).or_else(|| p.speed_hold(s.time, drift))
+                p.hold(s.time, drift, kick, s.pulley_omega[j], s.brake_ramp[j])
+                    .map(|h| h.0)
             } else {
                 None
             },

@@ -7,6 +7,7 @@
 //! same operations on the same values (so the same bits). This is why the state keeps
 //! half-step velocities: the update needs only F(t), never a second force array.
 
+use crate::drives::brake::Holder;
 use crate::error::{BeltError, BeltResult};
 use crate::forces;
 use crate::pipeline::Effects;
@@ -182,6 +183,7 @@ impl Simulation {
     /// the takeups' stops. Returns a sum that is finite only if every value is.
     fn integrate_rigid(&mut self, kick: f64, drift: f64) -> f64 {
         let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
+        let (time, physical) = (s.time, self.inertia.physical);
         let mut check = 0.0;
         for &d in &m.dofs.rigid {
             let force = sc.rigid_force(m, d);
@@ -194,7 +196,14 @@ impl Simulation {
                 Rigid::Pulley(j) => sc.held[j],
                 _ => None,
             };
-            let new = held.unwrap_or(old + kick * force / mass);
+            let mut new = held.unwrap_or(old + kick * force / mass);
+            // A takeup's lock and winch limit act in dynamics only (the relaxation moves on
+            // fictitious masses to the static state, a screw takeup to its set force).
+            if let (Rigid::Takeup(j), true) = (d, physical) {
+                if let Some(t) = &m.pulleys[j].takeup {
+                    new = crate::drives::takeup::carriage_speed(t, time, new);
+                }
+            }
             *speed = new;
             if let Some(q) = coordinate {
                 *q += new * drift;
@@ -410,12 +419,22 @@ impl Simulation {
             let force = sc.rigid_force(m, d);
             let mass = self.inertia.rigid(m, d);
             let held = match d {
+                // A drive on its curve, or a brake or holdback holding at rest: the held
+                // speed at t − Δt/2 (a brake slowing at a set rate moves on like a free
+                // pulley under its torque, which is that rate).
                 Rigid::Pulley(j) if sc.held[j].is_some() => {
-                    let p = &m.pulleys[j];
-                    p.brake_hold(s.time)
-                        .or_else(|| p.speed_hold(s.time - dt, dt))
-                        .map(|h| h.omega)
+                    let omega = s.pulley_omega[j];
+                    match m.pulleys[j].hold(s.time - dt, dt, dt, omega, s.brake_ramp[j]) {
+                        Some((h, Holder::Drive)) => Some(h.omega),
+                        Some((h, Holder::Brake)) if h.omega == 0.0 => Some(0.0),
+                        _ => None,
+                    }
                 }
+                Rigid::Takeup(j) => m.pulleys[j]
+                    .takeup
+                    .as_ref()
+                    .filter(|t| s.time >= t.lock_time)
+                    .map(|_| 0.0),
                 _ => None,
             };
             let speed = s.rigid_speed_mut(d);

@@ -2,10 +2,11 @@
 
 use crate::contact::nonlinear::NonlinearContact;
 use crate::drives::controller::ControlModel;
+use crate::drives::holdback::Holdback;
 use crate::drives::motor::MotorModel;
 use crate::drives::sharing::Follower;
 use crate::friction::Prescribed;
-use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene};
+use crate::scene::{BrakeSpec, DriveSpec, FrictionModel, Scene, TakeupKind};
 use nalgebra::Vector2;
 
 /// Compiled gravity takeup.
@@ -21,6 +22,11 @@ pub struct TakeupModel {
     pub travel_min: f64,
     /// Travel limits from the initial position, m.
     pub travel_max: f64,
+    /// Largest carriage speed along the line, m/s (a winch's limit; +∞ otherwise).
+    pub max_speed: f64,
+    /// Time from which the carriage is locked in dynamic runs, s: −∞ for a fixed (screw)
+    /// takeup, the scene's first stop with `lock_on_stop`, else +∞.
+    pub lock_time: f64,
 }
 
 /// Compiled pulley.
@@ -51,6 +57,8 @@ pub struct PulleyModel {
     pub drive: Option<DriveSpec>,
     /// Brake, if any.
     pub brake: Option<BrakeSpec>,
+    /// Holdback, if any.
+    pub holdback: Option<Holdback>,
     /// Search margin beyond the radius for the contact window, m.
     pub window_margin: f64,
     /// PI speed controller of the drive, if it has one (`crate::drives::controller`).
@@ -76,17 +84,10 @@ impl PulleyModel {
         }
     }
 
-    /// The brake's hold at time `time` (s): at rest, up to its capacity then.
-    #[inline]
-    pub fn brake_hold(&self, time: f64) -> Option<Prescribed> {
-        self.brake
-            .as_ref()
-            .map(|b| Prescribed::at_rest(b.capacity.eval(time)))
-    }
-
     /// The speed-controlled drive's hold for the step from `time` to `time + dt` (s): the
     /// pulley speed at the mid-step, where central differences place it, is the curve's
     /// belt speed there over the radius, ω(t + Δt/2) = v(t + Δt/2)/r, up to `max_torque`.
+    /// `None` after the drive's `power_off`.
     #[inline]
     pub fn speed_hold(&self, time: f64, dt: f64) -> Option<Prescribed> {
         let drive = self.drive.as_ref()?;
@@ -94,10 +95,13 @@ impl PulleyModel {
             return None; // a PI controller: a torque, not a hold
         }
         let curve = drive.start_curve.as_ref()?;
-        Some(Prescribed {
-            omega: curve.speed_at(time + 0.5 * dt) / self.radius,
-            capacity: drive.max_torque,
-        })
+        if !drive.powered(time) {
+            return None;
+        }
+        Some(Prescribed::within(
+            curve.speed_at(time + 0.5 * dt) / self.radius,
+            drive.max_torque,
+        ))
     }
 }
 
@@ -105,6 +109,7 @@ impl PulleyModel {
 /// reaches one element beyond the radius.
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
     let element_mass = scene.belt.mass_per_length * l0;
+    let stop_time = scene.stop_time().unwrap_or(f64::INFINITY);
     scene
         .pulleys
         .iter()
@@ -146,18 +151,27 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 friction: p.friction,
                 takeup: p.takeup.as_ref().map(|t| {
                     let dir = Vector2::new(t.direction[0], t.direction[1]);
+                    // A winch or a screw pulls with its set force, a counterweight with
+                    // its weight (it moves with the pulley); the pulley's own weight acts
+                    // along −y.
+                    let pull = t.force.unwrap_or(t.counterweight * scene.gravity);
                     TakeupModel {
                         direction: dir,
                         moving_mass: p.mass + t.counterweight,
-                        // Counterweight pulls along the line; the pulley's own weight
-                        // acts along −y.
-                        pull: t.counterweight * scene.gravity - p.mass * scene.gravity * dir.y,
+                        pull: pull - p.mass * scene.gravity * dir.y,
                         travel_min: t.travel_min,
                         travel_max: t.travel_max,
+                        max_speed: t.max_speed,
+                        lock_time: match t.kind {
+                            TakeupKind::Fixed => f64::NEG_INFINITY,
+                            _ if t.lock_on_stop => stop_time,
+                            _ => f64::INFINITY,
+                        },
                     }
                 }),
                 drive: p.drive.clone(),
                 brake: p.brake.clone(),
+                holdback: p.holdback.as_ref().map(Holdback::compile),
                 window_margin: l0,
                 control: None,
                 follow: None,

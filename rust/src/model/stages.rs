@@ -45,8 +45,12 @@ pub enum Stage {
     /// within the motor's limit (`docs/drives.md`). Solved with the belt friction when the
     /// pulley has friction; this stage takes the result (or solves a pulley without).
     SpeedDrives,
-    /// Coulomb brakes with holding at rest.
+    /// Brakes (torque or deceleration target) with holding at rest, together with the
+    /// holdback of the same pulley (`crate::drives::brake`).
     Brakes,
+    /// Holdbacks of pulleys without a brake: one-way clutches against reverse rotation
+    /// (`crate::drives::holdback`).
+    Holdbacks,
 }
 
 impl Stage {
@@ -69,6 +73,7 @@ impl Stage {
             Stage::IdlerFriction => "idler_friction",
             Stage::SpeedDrives => "speed_drives",
             Stage::Brakes => "brakes",
+            Stage::Holdbacks => "holdbacks",
         }
     }
 }
@@ -137,6 +142,12 @@ pub(super) fn select(
     }
     if pulleys.iter().any(|p| p.brake.is_some()) {
         stages.push(Stage::Brakes);
+    }
+    if pulleys
+        .iter()
+        .any(|p| p.brake.is_none() && p.holdback.is_some())
+    {
+        stages.push(Stage::Holdbacks);
     }
     stages
 }

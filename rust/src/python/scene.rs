@@ -12,7 +12,7 @@ use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, IdlerSpec, LoadSpec, PulleySpec,
+    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, LoadSpec, PulleySpec,
     RecordingParams, Scene, SolverParams, TakeupSpec,
 };
 use crate::start_curve::StartCurve;
@@ -196,6 +196,7 @@ pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResul
         "motor" => read::<Motor>(obj, path).map(drop),
         "coupling" => read::<FluidCoupling>(obj, path).map(drop),
         "brake" => read::<BrakeSpec>(obj, path).map(drop),
+        "holdback" => read::<HoldbackSpec>(obj, path).map(drop),
         "idler" => read::<IdlerSpec>(obj, path).map(drop),
         "load" => read::<LoadSpec>(obj, path).map(drop),
         "solver" => read::<SolverParams>(obj, path).map(drop),
@@ -260,6 +261,7 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("motor", motor)?;
     d.set_item("coupling", to_py(py, &FluidCoupling::default())?)?;
     d.set_item("brake", to_py(py, &BrakeSpec::default())?)?;
+    d.set_item("holdback", to_py(py, &HoldbackSpec::default())?)?;
     d.set_item("idler", to_py(py, &IdlerSpec::default())?)?;
     d.set_item("load", to_py(py, &LoadSpec::default())?)?;
     d.set_item("solver", to_py(py, &SolverParams::default())?)?;

@@ -5,7 +5,9 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, Table, Wrap};
+use super::{
+    BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, Table, TakeupKind, Wrap,
+};
 use crate::drives::controller::SpeedController;
 use crate::drives::motor::Motor;
 use crate::drives::sharing::TorqueFollow;
@@ -131,6 +133,18 @@ impl Named for StartShape {
     }
 }
 named_serde!(StartShape);
+
+impl Named for TakeupKind {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (TakeupKind::Gravity, "gravity"),
+        (TakeupKind::Fixed, "fixed"),
+        (TakeupKind::Winch, "winch"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name("takeup kind", name, &["gravity", "fixed", "winch"])
+    }
+}
+named_serde!(TakeupKind);
 
 /// The friction model named in a scene's `friction` table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -351,6 +365,8 @@ pub struct DriveKeys {
     pub motor: Option<Motor>,
     /// Flywheel on the high-speed shaft, kg·m².
     pub flywheel: f64,
+    /// Time the motor loses power, s.
+    pub power_off: Option<f64>,
 }
 
 impl Default for DriveKeys {
@@ -376,6 +392,7 @@ impl From<DriveSpec> for DriveKeys {
             follow: d.follow,
             motor: d.motor,
             flywheel: d.flywheel,
+            power_off: d.power_off,
         }
     }
 }
@@ -396,6 +413,7 @@ impl TryFrom<DriveKeys> for DriveSpec {
             follow: k.follow,
             motor: k.motor,
             flywheel: k.flywheel,
+            power_off: k.power_off,
         })
     }
 }
@@ -408,6 +426,14 @@ pub struct BrakeKeys {
     pub time: Option<Numbers>,
     /// Capacity, N·m, ≥ 0.
     pub capacity: Option<Numbers>,
+    /// Braking torque from `applied` on, N·m.
+    pub torque: Option<f64>,
+    /// Deceleration target, m/s².
+    pub deceleration: Option<f64>,
+    /// Time the brake is applied, s.
+    pub applied: f64,
+    /// Build-up time of the torque, s.
+    pub rise: f64,
 }
 
 impl Default for BrakeKeys {
@@ -419,7 +445,14 @@ impl Default for BrakeKeys {
 impl From<BrakeSpec> for BrakeKeys {
     fn from(b: BrakeSpec) -> Self {
         let (time, capacity) = columns(&b.capacity);
-        BrakeKeys { time, capacity }
+        BrakeKeys {
+            time,
+            capacity,
+            torque: b.torque,
+            deceleration: b.deceleration,
+            applied: b.applied,
+            rise: b.rise,
+        }
     }
 }
 
@@ -429,6 +462,10 @@ impl TryFrom<BrakeKeys> for BrakeSpec {
         Ok(BrakeSpec {
             capacity: table(("time", k.time), ("capacity", k.capacity))?
                 .unwrap_or_else(|| Table::constant(0.0)),
+            torque: k.torque,
+            deceleration: k.deceleration,
+            applied: k.applied,
+            rise: k.rise,
         })
     }
 }

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 mod forms;
 pub mod read;
 mod rules;
+mod stops;
 mod validate;
 
 pub(crate) use forms::required;
@@ -29,6 +30,7 @@ pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
 pub use rules::{
     Formulation, IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE,
 };
+pub use stops::{HoldbackSpec, TakeupKind};
 pub(crate) use validate::check_finite;
 
 /// Most belt elements a scene may have (given or derived), 10⁶: about 100 MB of model and
@@ -252,6 +254,12 @@ pub struct DriveSpec {
     /// turns with the belt), kg·m², ≥ 0: counts i²·flywheel at the pulley, i the motor's
     /// `gear_ratio` (1 without a motor). Default 0.
     pub flywheel: f64,
+    /// Time the motor loses power (a power failure or a stop), s, absolute simulated time:
+    /// from then on it supplies no torque (no torque table, speed-controlled hold, PI
+    /// controller or follower torque; a DOL motor is switched off and its rotor coasts) and
+    /// the pulley coasts; the load torque −b·ω stays. `None`: never. Default
+    /// `None` (`docs/stops-takeups.md`).
+    pub power_off: Option<f64>,
 }
 
 impl Default for DriveSpec {
@@ -267,14 +275,19 @@ impl Default for DriveSpec {
             follow: None,
             motor: None,
             flywheel: 0.0,
+            power_off: None,
         }
     }
 }
 
 impl DriveSpec {
-    /// Drive torque at time `t` (s) and pulley speed `omega` (rad/s), N·m.
+    /// Drive torque at time `t` (s) and pulley speed `omega` (rad/s), N·m: after
+    /// `power_off` only the load torque −b·ω.
     #[inline]
     pub fn torque_at(&self, t: f64, omega: f64) -> f64 {
+        if !self.powered(t) {
+            return -self.viscous * omega;
+        }
         let factor = if self.speed_factor.x.is_empty() {
             1.0
         } else {
@@ -285,28 +298,53 @@ impl DriveSpec {
 }
 
 /// A brake: a Coulomb torque that opposes rotation and holds the pulley at rest up to its
-/// capacity.
-/// In a scene its table is the keys `time`/`capacity` ([`BrakeKeys`]).
+/// capacity (stick/slip, never reversing the motion; `docs/stops-takeups.md`). The capacity
+/// is a table against time, or a `torque` applied at `applied` and built up over `rise`;
+/// with a `deceleration` target the brake supplies only the torque (up to `torque`) that
+/// decelerates the pulley surface at that rate.
+/// In a scene its table is the keys `time`/`capacity`, `torque`, `deceleration`, `applied`
+/// and `rise` ([`BrakeKeys`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(into = "BrakeKeys", try_from = "BrakeKeys")]
 pub struct BrakeSpec {
-    /// Holding/braking torque capacity against time, N·m, ≥ 0. Default 0.
+    /// Holding/braking torque capacity against time, N·m, ≥ 0. Default 0. Left at its
+    /// default when `torque` is given.
     pub capacity: Table,
+    /// Braking torque (the capacity) from `applied` on, N·m, finite, > 0. `None`: the
+    /// `capacity` table. Default `None`.
+    pub torque: Option<f64>,
+    /// Deceleration target of the belt at the pulley surface, m/s², finite, > 0: the brake
+    /// supplies the torque, up to `torque`, that slows the pulley at this rate, and holds
+    /// it at rest once stopped. Only with `torque`. `None`: a plain torque brake. Default
+    /// `None`.
+    pub deceleration: Option<f64>,
+    /// Time the brake is applied, s, absolute simulated time, finite; before it the brake
+    /// is released. Only with `torque`. Default 0.
+    pub applied: f64,
+    /// Time the torque takes to build up from 0 to `torque` (linear), s, finite, ≥ 0. Only
+    /// with `torque`. Default 0.
+    pub rise: f64,
 }
 
 impl Default for BrakeSpec {
     fn default() -> Self {
         BrakeSpec {
             capacity: Table::constant(0.0),
+            torque: None,
+            deceleration: None,
+            applied: 0.0,
+            rise: 0.0,
         }
     }
 }
 
-/// A gravity takeup: the pulley translates on a straight line, pulled by a counterweight
-/// (thesis eq. 4.63).
+/// A takeup: the pulley translates on a straight line, pulled by a counterweight (gravity,
+/// thesis eq. 4.63), a winch or a screw ([`TakeupKind`], `docs/stops-takeups.md`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TakeupSpec {
+    /// Kind of takeup. Default [`TakeupKind::Gravity`].
+    pub kind: TakeupKind,
     /// Unit vector along which the counterweight pulls. Default (0, −1): a vertical gravity
     /// takeup hanging in the loop.
     pub direction: [f64; 2],
@@ -317,6 +355,16 @@ pub struct TakeupSpec {
     pub travel_min: f64,
     /// Highest travel along `direction` from the initial position, m. Default +∞.
     pub travel_max: f64,
+    /// Force the takeup pulls the pulley with along `direction`, N, finite, > 0: a winch's
+    /// set force, or the force a screw (`"fixed"`) takeup is tightened to at rest. Required
+    /// for those kinds, refused for a gravity takeup. Default `None`.
+    pub force: Option<f64>,
+    /// Winch speed limit: largest carriage speed along the line, m/s, > 0, may be +∞. Only
+    /// for a winch. Default +∞.
+    pub max_speed: f64,
+    /// Lock the carriage where it is when the first stop of the scene begins (the earliest
+    /// drive `power_off` or brake `applied` time). Default false.
+    pub lock_on_stop: bool,
 }
 
 impl Default for TakeupSpec {
@@ -326,6 +374,10 @@ impl Default for TakeupSpec {
             counterweight: 0.0,
             travel_min: f64::NEG_INFINITY,
             travel_max: f64::INFINITY,
+            kind: TakeupKind::Gravity,
+            force: None,
+            max_speed: f64::INFINITY,
+            lock_on_stop: false,
         }
     }
 }
@@ -376,6 +428,9 @@ pub struct PulleySpec {
     /// (`contact_stiffness`, `contact_damping`): N = c₁p² + c₂p + δ(p)·b·ṗ, never pulling.
     /// `None`: the linear law. Default `None`.
     pub nonlinear_contact: Option<crate::contact::nonlinear::NonlinearContact>,
+    /// Holdback (a one-way clutch that stops the pulley turning backwards), if any.
+    /// Default `None`.
+    pub holdback: Option<HoldbackSpec>,
 }
 
 impl Default for PulleySpec {
@@ -396,6 +451,7 @@ impl Default for PulleySpec {
             drive: None,
             brake: None,
             nonlinear_contact: None,
+            holdback: None,
         }
     }
 }

@@ -174,6 +174,20 @@ impl Scene {
                     "a brake (the torque that holds the pulley at rest within the step)",
                 );
             }
+            if p.holdback.is_some() {
+                return fixed(
+                    format!("pulleys[{i}].holdback"),
+                    "a holdback (the torque that stops the pulley turning backwards within the step)",
+                );
+            }
+            if let Some(t) = &p.takeup {
+                if t.kind != super::TakeupKind::Gravity || t.lock_on_stop {
+                    return fixed(
+                        format!("pulleys[{i}].takeup.kind"),
+                        "a winch or screw takeup, or one that locks on stopping (the carriage speed is limited or held once per step),",
+                    );
+                }
+            }
         }
         for (i, d) in self.idlers.iter().enumerate() {
             if matches!(d.friction, FrictionModel::StickForce { .. }) && !d.friction.is_none() {

@@ -87,7 +87,7 @@ impl DriveSpec {
             return Err(BeltError::invalid(
                 format!("{pulley}.brake"),
                 "a brake",
-                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake: the drive holds the pulley itself (remove one of them)"),
+                format!("a pulley with a speed-controlled drive ({f}.start_curve) cannot also have a brake that acts while the drive has power: the drive holds the pulley itself (remove one of them, or give the drive a power_off and the brake a torque applied no earlier)"),
             ));
         }
         Ok(())
@@ -161,7 +161,7 @@ pub(crate) fn check_finite(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
-fn check_positive(field: &str, value: f64) -> BeltResult<()> {
+pub(super) fn check_positive(field: &str, value: f64) -> BeltResult<()> {
     check_finite(field, value)?;
     if value > 0.0 {
         Ok(())
@@ -170,7 +170,7 @@ fn check_positive(field: &str, value: f64) -> BeltResult<()> {
     }
 }
 
-fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
+pub(super) fn check_non_negative(field: &str, value: f64) -> BeltResult<()> {
     check_finite(field, value)?;
     if value >= 0.0 {
         Ok(())
@@ -355,7 +355,11 @@ impl Scene {
                 }
                 check_non_negative(&format!("{f}.drive.viscous"), d.viscous)?;
                 check_non_negative(&format!("{f}.drive.inertia"), d.inertia)?;
-                d.validate_speed_control(&f, p.brake.is_some())?;
+                if let Some(off) = d.power_off {
+                    check_finite(&format!("{f}.drive.power_off"), off)?;
+                }
+                let holds_with = p.brake.is_some() && !super::stops::brake_after_power_off(p);
+                d.validate_speed_control(&f, holds_with)?;
             }
             if let Some(br) = &p.brake {
                 br.capacity
@@ -363,6 +367,7 @@ impl Scene {
             }
         }
         crate::drives::sharing::validate(self)?;
+        super::stops::check_stops(self)?;
         for (i, d) in self.idlers.iter().enumerate() {
             let f = format!("idlers[{i}]");
             check_finite(&format!("{f}.center[0]"), d.center[0])?;

@@ -265,7 +265,18 @@ impl Simulation {
         let mut worst = sc.force.iter().map(|f| f.norm()).fold(0.0, f64::max);
         for &d in &m.dofs.rigid {
             match d {
-                Rigid::Takeup(_) => worst = worst.max(sc.rigid_force(m, d).abs()),
+                Rigid::Takeup(j) => {
+                    let force = sc.rigid_force(m, d);
+                    // A takeup resting on a travel stop that it is pushed into is in balance:
+                    // the stop takes the difference.
+                    let on_stop = m.pulleys[j].takeup.as_ref().is_some_and(|t| {
+                        let x = self.state.takeup_travel[j];
+                        (x >= t.travel_max && force > 0.0) || (x <= t.travel_min && force < 0.0)
+                    });
+                    if !on_stop {
+                        worst = worst.max(force.abs());
+                    }
+                }
                 // A body torque as the pair of end forces that make it.
                 Rigid::Body(i) => {
                     worst = worst.max(sc.rigid_force(m, d).abs() / m.rest_length[i]);
