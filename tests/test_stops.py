@@ -473,3 +473,27 @@ def test_bad_builder_toml():
     with pytest.raises(SceneError, match=r"stop\.brake_rise = -1\.0: must be >= 0"):
         beltrs.conveyor.loads("[conveyor]\n[conveyor.stop]\ntime = 3.0\nbrake = 'head'\nbrake_torque = 1.0\n"
                               "brake_rise = -1.0\n")
+
+
+@pytest.mark.parametrize("kind", ["motor", "controller"])
+def test_power_off_switches_off_motors_and_controllers(kind):
+    """A power failure cuts every kind of drive: a DOL motor is switched off (its torque is
+    0 from the trip on) and a PI speed controller gives no torque (and stops integrating)."""
+    from tiny_scene import tiny_scene
+
+    from beltrs import Motor, SpeedController
+
+    scene = tiny_scene()
+    if kind == "motor":
+        drive = Drive(motor=Motor(rated_power=2e3, rated_speed=150.0, synchronous_speed=157.08, gear_ratio=20.0),
+                      power_off=0.5)
+    else:
+        drive = Drive(start_curve=StartCurve(speed=1.0, ramp=0.2), controller=SpeedController(), power_off=0.5)
+    scene.pulleys[1].drive = drive
+    scene.pulleys[1].friction = Friction(static=0.5)
+    sim = beltrs.Simulation(scene)
+    sim.stabilise()
+    res = sim.run(1.0, record_interval=0.01, tension=False, node_position=False, node_velocity=False)
+    t = res.time
+    assert np.abs(res.drive_torque[t < 0.5, 1]).max() > 1.0
+    assert np.all(res.drive_torque[t > 0.5 + 1e-9, 1] == 0.0)
