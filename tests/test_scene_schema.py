@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, Pulley, Recording, Scene, SceneError,
-                    Solver, StartCurve, Takeup)
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, NonlinearContact, Pulley, Recording,
+                    Scene, SceneError, Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 
@@ -21,6 +21,7 @@ TABLES = {
     "belt": Belt,
     "pulley": Pulley,
     "friction": Friction,
+    "nonlinear_contact": NonlinearContact,
     "takeup": Takeup,
     "drive": Drive,
     "start_curve": StartCurve,
@@ -194,6 +195,6 @@ def test_a_checkpoint_of_an_older_format_is_refused_naming_its_version(tmp_path)
         data[8:12] = old.to_bytes(4, "little")
         path.write_bytes(bytes(data))
         with pytest.raises(
-            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 4 \(.*older"
+            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 5 \(.*older"
         ):
             beltrs.Simulation.load_checkpoint(path)

@@ -109,7 +109,14 @@ PULLEY_SERIES = (
     "slipping_nodes",
 )
 #: Scalar attributes of a Result and their types, saved beside the arrays.
-_SCALARS = {"dt": float, "wall_time": float, "interrupted": bool, "record_every": int}
+_SCALARS = {
+    "dt": float,
+    "wall_time": float,
+    "interrupted": bool,
+    "record_every": int,
+    "steps_accepted": int,
+    "steps_rejected": int,
+}
 _LISTS = ("energy_columns", "stages", "pulley_names")
 _DESCRIPTORS = ("beltrs_format", "units", "dims", "metadata_types")
 #: Fields that ``Result.__eq__`` leaves out: how the run went, not what it computed.
@@ -174,6 +181,9 @@ class Result:
             int, float, lists of str, or NumPy arrays. Default empty.
         checkpoint_error: the last :class:`beltrs.CheckpointError` of a periodic or final
             checkpoint that could not be written (the run went on), else None.
+        steps_accepted, steps_rejected: steps the adaptive integrator
+            (``Solver(integrator="rkf45")``) accepted and rejected during the run (each
+            rejected step was retried smaller); 0 with central differences.
     """
 
     time: np.ndarray
@@ -203,6 +213,8 @@ class Result:
     record_every: int = 1
     metadata: dict[str, Any] = field(default_factory=dict)
     checkpoint_error: Optional[BaseException] = None
+    steps_accepted: int = 0
+    steps_rejected: int = 0
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":
@@ -608,6 +620,8 @@ class Result:
             "wall_time": float(self.wall_time),
             "interrupted": int(bool(self.interrupted)),
             "record_every": int(self.record_every),
+            "steps_accepted": int(self.steps_accepted),
+            "steps_rejected": int(self.steps_rejected),
             "stages": json.dumps(list(self.stages)),
             "metadata_types": json.dumps(meta_types),
         }

@@ -521,6 +521,7 @@ class Simulation:
         max_wall_time: Optional[float],
     ) -> Result:
         core = self._core
+        self._adaptive_start = (int(core.accepted_steps), int(core.rejected_steps))
         estimate = steps * _estimate_step_seconds(core) if steps > 0 else 0.0
         if max_wall_time is not None and estimate > max_wall_time:
             raise _beltrs.SceneError(
@@ -644,6 +645,8 @@ class Simulation:
             interrupted=bool(self._core.interrupted),
             pulley_names=[p.name for p in self.scene.pulleys],
             record_every=int(self._core.record_every) if record_every is None else record_every,
+            steps_accepted=int(self._core.accepted_steps) - getattr(self, "_adaptive_start", (0, 0))[0],
+            steps_rejected=int(self._core.rejected_steps) - getattr(self, "_adaptive_start", (0, 0))[1],
             metadata={"rest_length": self.rest_length, **self._pulley_constants()},
         )
 

@@ -14,6 +14,7 @@ mod load_resistance;
 mod motor_start;
 mod recorder;
 mod recording_params;
+mod rigid_body;
 mod rkf45;
 mod run_contract;
 mod scene_schema;

@@ -155,6 +155,12 @@ pub(super) fn write_state(w: &mut Writer, s: &State) {
     }
     // Added within version 4 after the drive memory: older files end before it.
     w.f64s(&s.brake_ramp);
+    // Version 5: the rigid belt bodies and the adaptive integrator.
+    w.f64s(&s.body_angle);
+    w.f64s(&s.body_spin);
+    w.f64(s.adaptive_step);
+    w.u64(s.accepted_steps);
+    w.u64(s.rejected_steps);
 }
 
 pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -199,8 +205,9 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         // Filled in from the model by `decode`.
         (Vec::new(), Vec::new())
     };
-    // Controller memory (added within version 4; absent from older files: zero).
-    let drive_memory = if r.pos < r.bytes.len() {
+    // Controller memory: always in version 5; added within version 4, so absent from
+    // older version 4 files (zero memory).
+    let drive_memory = if r.version >= 5 || r.pos < r.bytes.len() {
         let n = r.len("drive memories", 24)?;
         (0..n)
             .map(|_| {
@@ -214,11 +221,23 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         vec![DriveMemory::default(); pulley_omega.len()]
     };
-    // Added within version 4 after the drive memory (absent from older files: none begun).
-    let brake_ramp = if r.pos < r.bytes.len() {
+    // Added within version 4 after the drive memory (absent from older version 4 files:
+    // none begun); always in version 5.
+    let brake_ramp = if r.version >= 5 || r.pos < r.bytes.len() {
         r.f64s("brake ramps")?
     } else {
         vec![0.0; pulley_omega.len()]
+    };
+    let (body_angle, body_spin, adaptive_step, accepted_steps, rejected_steps) = if r.version >= 5 {
+        (
+            r.f64s("belt body angles")?,
+            r.f64s("belt body speeds")?,
+            r.f64("adaptive step")?,
+            r.u64("accepted steps")?,
+            r.u64("rejected steps")?,
+        )
+    } else {
+        (Vec::new(), Vec::new(), 0.0, 0, 0)
     };
     Ok(State {
         time,
@@ -236,6 +255,11 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         node_mass,
         load_edges,
         drive_memory,
+        body_angle,
+        body_spin,
+        adaptive_step,
+        accepted_steps,
+        rejected_steps,
         brake_ramp,
     })
 }

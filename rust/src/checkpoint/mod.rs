@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; older versions are refused, naming their version)
+//! # Format (version 5; versions before 4 are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,13 +9,15 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (4) |
+//! | 8..12 | format version, `u32` (5) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
 //! | 24+L..28+L | CRC-32 (IEEE 802.3) of bytes 0..24+L, `u32` |
 //!
-//! The payload holds, in order: the engine version that wrote it (a string); the scene
+//! The payload holds, in order: the engine version that wrote it (a string); from version
+//! 5, the belt formulation and the integrator the state belongs to (their scene names, e.g.
+//! `rigid_body`, `rkf45`: checked against the compiled scene on load); the scene
 //! (every field of [`Scene`], so parameters changed during a run, e.g. a counterweight or a
 //! drive, are kept), as a byte string holding the serde form of the one scene schema
 //! ([`crate::scene`], the same keys as a scene file) in CBOR, whose floats keep every bit;
@@ -26,10 +28,16 @@
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
 //! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a file that ends before it reads as zero memory), and the speed at
-//! which each pulley's deceleration brake began its ramp (added within version 4 after the
-//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
-//! arrays are a `u64` length followed by the items.
+//! within version 4, so a version 4 file that ends before it reads as zero memory), the
+//! speed at which each pulley's deceleration brake began its ramp (added within version 4
+//! after the drive memory; a version 4 file that ends before it reads as no ramp begun);
+//! from version 5, the rigid belt bodies' angles and angular speeds (empty arrays for the
+//! node belt), the adaptive integrator's next step and its accepted and rejected step
+//! counts. Strings, byte strings and arrays are a `u64` length followed by the items.
+//!
+//! Version 5 added the formulation and integrator tags and the state of the rigid-body
+//! belt and of the adaptive integrator; version 4 files (node belt, central differences)
+//! are still read.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -64,7 +72,7 @@ use std::path::Path;
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -105,6 +113,8 @@ pub fn crc32(bytes: &[u8]) -> u32 {
 pub fn encode(sim: &Simulation) -> Vec<u8> {
     let mut w = Writer::default();
     w.str(env!("CARGO_PKG_VERSION"));
+    w.str(sim.model.formulation.name());
+    w.str(sim.model.integrator.name());
     write_scene(&mut w, &sim.model.scene);
     w.u64(sim.model.nodes as u64);
     w.f64(sim.model.dt);
@@ -182,6 +192,11 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         version,
     };
     let _writer_version = r.str("engine version")?;
+    let tags = if version >= 5 {
+        Some((r.str("formulation")?, r.str("integrator")?))
+    } else {
+        None
+    };
     let scene = read_scene(&mut r)?;
     let nodes = r.u64("node count")?;
     let dt = r.f64("time step")?;
@@ -204,6 +219,15 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         // No loads existed: the node masses are the belt's.
         state.node_mass = model.mass.clone();
     }
+    if let Some((formulation, integrator)) = tags {
+        let compiled = (model.formulation.name(), model.integrator.name());
+        if (formulation.as_str(), integrator.as_str()) != compiled {
+            return Err(format!(
+                "corrupt: tagged as a {formulation} belt integrated by {integrator}, but its scene compiles to a {} belt integrated by {}",
+                compiled.0, compiled.1
+            ));
+        }
+    }
     check_state_fits(&state, &model)?;
     Ok(Simulation::from_parts(model, state))
 }
@@ -224,6 +248,16 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
         ("brake ramps", s.brake_ramp.len(), p),
+        (
+            "belt body angles",
+            s.body_angle.len(),
+            m.initial_angles.len(),
+        ),
+        (
+            "belt body speeds",
+            s.body_spin.len(),
+            m.initial_angles.len(),
+        ),
     ];
     for (what, have, want) in sizes {
         if have != want {

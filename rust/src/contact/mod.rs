@@ -148,6 +148,25 @@ pub fn pulley_contact(
     force: &mut [V2],
     out: &mut PulleyContacts,
 ) -> V2 {
+    let (k, c) = (body.stiffness, body.damping);
+    pulley_contact_law(window, x, v, body, force, out, |depth, approach| {
+        (k * depth + c * approach).max(0.0)
+    })
+}
+
+/// [`pulley_contact`] with the normal force given by `law`(penetration, approach speed)
+/// (N, ≥ 0): the linear penalty, or Kubas's nonlinear law
+/// ([`nonlinear::NonlinearContact::normal_force`]).
+#[inline(always)]
+pub fn pulley_contact_law(
+    window: &ContactWindow,
+    x: &[V2],
+    v: &[V2],
+    body: &PulleyBody,
+    force: &mut [V2],
+    out: &mut PulleyContacts,
+    law: impl Fn(f64, f64) -> f64,
+) -> V2 {
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();
@@ -163,7 +182,7 @@ pub fn pulley_contact(
         let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
         let depth = body.radius - a;
         let approach = -(v[i] - body.center_velocity).dot(&normal);
-        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+        let fn_ = law(depth, approach);
         let f = normal * fn_;
         force[i] += f;
         on_pulley -= f;

@@ -35,26 +35,40 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             &body,
             s.step.is_multiple_of(super::FULL_SCAN_INTERVAL),
         );
-        sc.pulley_force[j] = if m.wrap_contact {
-            super::pulley_wrap_contact(
-                &s.pulley_window[j],
+        let (window, contacts) = (&s.pulley_window[j], &mut sc.contacts[j]);
+        sc.pulley_force[j] = match &p.nonlinear {
+            // Kubas's nonlinear law, nodal (validation refuses it with wrap contact).
+            Some(nonlinear) => {
+                let mut nl = nonlinear.scaled(cx.contact_scale);
+                nl.damping = effects.damped(nl.damping);
+                super::pulley_contact_law(
+                    window,
+                    &s.position,
+                    &s.velocity,
+                    &body,
+                    &mut sc.force,
+                    contacts,
+                    |p, rate| nl.normal_force(p, rate),
+                )
+            }
+            None if m.wrap_contact => super::pulley_wrap_contact(
+                window,
                 &s.position,
                 &s.velocity,
                 &body,
                 &law,
                 &mut sc.force,
                 &mut sc.tension,
-                &mut sc.contacts[j],
-            )
-        } else {
-            super::pulley_contact(
-                &s.pulley_window[j],
+                contacts,
+            ),
+            None => super::pulley_contact(
+                window,
                 &s.position,
                 &s.velocity,
                 &body,
                 &mut sc.force,
-                &mut sc.contacts[j],
-            )
+                contacts,
+            ),
         };
     }
 }

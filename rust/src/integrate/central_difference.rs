@@ -224,6 +224,7 @@ impl Simulation {
                     check += s.takeup_travel[j] + s.takeup_speed[j];
                 }
                 Rigid::Idler(_) => check += new,
+                Rigid::Body(i) => check += new + s.body_angle[i],
             }
         }
         if m.has_drive_memory {
@@ -274,6 +275,14 @@ impl Simulation {
                 Rigid::Idler(k) if !speed.is_finite() => {
                     return diverged("angular speed", format!("idler {k}"))
                 }
+                Rigid::Body(i) if !(speed.is_finite() && coordinate.is_finite()) => {
+                    let q = if speed.is_finite() {
+                        "body angle"
+                    } else {
+                        "body angular speed"
+                    };
+                    return diverged(q, format!("belt body {i}"));
+                }
                 _ => continue,
             };
             return diverged(
@@ -301,7 +310,8 @@ impl Simulation {
         tensions: bool,
         mut between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<()> {
-        let fuse = self.profile.is_none() && self.model.loads.is_empty();
+        // The fused axial pass is the node belt's.
+        let fuse = self.profile.is_none() && self.model.loads.is_empty() && !self.model.is_rigid();
         let dt = self.model.dt;
         let mut axial_done = false;
         for k in 0..steps {

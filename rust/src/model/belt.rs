@@ -130,7 +130,11 @@ fn arrays(
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;
     let m_el = rho * l0;
-    let c = 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt();
+    let c = match belt.damping_time {
+        // Voigt: b = τ·k (Guo & Wang's σ = Eε + ηε̇ with τ = η/E).
+        Some(tau) => tau * k,
+        None => 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt(),
+    };
     let rest_length = vec![l0; n];
     let axial_stiffness = vec![k; n];
     let axial_damping = vec![c; n];

@@ -134,6 +134,19 @@ impl PySimulation {
         self.lock(py).state.step
     }
 
+    /// Steps the adaptive integrator (RKF45) accepted since the model was compiled.
+    #[getter]
+    fn accepted_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.accepted_steps
+    }
+
+    /// Steps the adaptive integrator (RKF45) rejected and retried since the model was
+    /// compiled.
+    #[getter]
+    fn rejected_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.rejected_steps
+    }
+
     /// Length of the initial belt path, m.
     #[getter]
     fn path_length(&self, py: Python<'_>) -> f64 {
@@ -579,6 +592,7 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::case_k_scene, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
     m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;

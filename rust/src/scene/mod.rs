@@ -22,12 +22,16 @@ use serde::{Deserialize, Serialize};
 mod forms;
 mod initial;
 pub mod read;
+mod rules;
 mod stops;
 mod validate;
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
 pub use initial::InitialState;
+pub use rules::{
+    Formulation, IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE,
+};
 pub use stops::{HoldbackSpec, TakeupKind};
 pub(crate) use validate::check_finite;
 
@@ -35,24 +39,6 @@ pub(crate) use validate::check_finite;
 /// state, and minutes of placement and ~0.1 s per step; more is almost surely a unit slip
 /// (e.g. a radius in millimetres), and would exhaust memory rather than fail cleanly.
 pub const MAX_ELEMENTS: usize = 1_000_000;
-
-/// Which discrete belt model to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Formulation {
-    /// Hustrulid (1993): lumped node masses joined by Kelvin-Voigt axial elements and
-    /// rotational bending springs (thesis eq. 4.1–4.60).
-    #[default]
-    NodeKelvinVoigt,
-}
-
-impl Formulation {
-    /// Name used in scene files and in Python.
-    pub fn name(self) -> &'static str {
-        match self {
-            Formulation::NodeKelvinVoigt => "node_kelvin_voigt",
-        }
-    }
-}
 
 /// How the belt meets the pulleys (`belt.pulley_contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -82,6 +68,12 @@ pub struct BeltParams {
     /// Axial damping as a fraction of the critical damping of one element (thesis eq. 4.3),
     /// dimensionless. Zero disables the damping term. Default 0.
     pub damping_ratio: f64,
+    /// Voigt damping of the belt material as a retardation time τ = η/E, s (Guo & Wang
+    /// 2020: σ = Eε + ηε̇): each element's (node belt) or spring-damper's (rigid-body belt)
+    /// damping is τ times its stiffness, b = τ·EA/l (and τ·EI/l for the rigid bodies'
+    /// torsional spring-dampers). Finite, ≥ 0; not with `damping_ratio` > 0. `None`: the
+    /// damping follows `damping_ratio`. Default `None`.
+    pub damping_time: Option<f64>,
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
@@ -116,6 +108,7 @@ impl Default for BeltParams {
             mass_per_length: 100.0,
             bending_stiffness: 0.0,
             damping_ratio: 0.0,
+            damping_time: None,
             length: None,
             elements: None,
             max_element_angle: std::f64::consts::PI / 6.0,
@@ -450,6 +443,10 @@ pub struct PulleySpec {
     pub drive: Option<DriveSpec>,
     /// Brake, if any. Default `None`.
     pub brake: Option<BrakeSpec>,
+    /// Kubas's damped nonlinear contact law (eq. 4–11) in place of the linear penalty
+    /// (`contact_stiffness`, `contact_damping`): N = c₁p² + c₂p + δ(p)·b·ṗ, never pulling.
+    /// `None`: the linear law. Default `None`.
+    pub nonlinear_contact: Option<crate::contact::nonlinear::NonlinearContact>,
     /// Holdback (a one-way clutch that stops the pulley turning backwards), if any.
     /// Default `None`.
     pub holdback: Option<HoldbackSpec>,
@@ -472,6 +469,7 @@ impl Default for PulleySpec {
             takeup: None,
             drive: None,
             brake: None,
+            nonlinear_contact: None,
             holdback: None,
         }
     }
@@ -578,6 +576,18 @@ pub struct SolverParams {
     /// Fraction of the stability limit used when `time_step` is `None`, in (0, 1].
     /// Default 0.5 (the thesis ran at half its limit).
     pub time_step_fraction: f64,
+    /// Time integrator: `"central_difference"` (default) or `"rkf45"` (adaptive, with the
+    /// tolerances below; effects solved for a fixed step, stick-force friction, speed
+    /// holds, brakes, running resistance and loads, are refused under it).
+    pub integrator: IntegratorKind,
+    /// RKF45's relative tolerance on each generalized coordinate, speed and friction
+    /// memory per step, dimensionless, > 0. Default 1e-8 ([`DEFAULT_RELATIVE_TOLERANCE`]:
+    /// positions are of the scene's size, deformations 10⁻³–10⁻⁵ of it). Used only with
+    /// `"rkf45"`.
+    pub relative_tolerance: f64,
+    /// RKF45's absolute tolerance per step, in each component's SI unit (m, rad, m/s,
+    /// rad/s), ≥ 0. Default 1e-11. Used only with `"rkf45"`.
+    pub absolute_tolerance: f64,
 }
 
 impl Default for SolverParams {
@@ -585,6 +595,9 @@ impl Default for SolverParams {
         SolverParams {
             time_step: None,
             time_step_fraction: 0.5,
+            integrator: IntegratorKind::CentralDifference,
+            relative_tolerance: DEFAULT_RELATIVE_TOLERANCE,
+            absolute_tolerance: DEFAULT_ABSOLUTE_TOLERANCE,
         }
     }
 }
