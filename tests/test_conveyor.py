@@ -90,19 +90,21 @@ def test_scene_structure():
     assert s.loads[0].mass_per_length == pytest.approx(55.556, rel=1e-4)
     assert s.loads[0].start == (5.0, 0.0) and s.loads[0].end == (L, 0.0)
     assert s.belt.elements == math.ceil((2 * L + 2 * math.pi * 0.4) / c.chosen_element_length)
-    assert not s.recording.stabilise_friction
+    assert not s.recording.stabilise_friction and not s.recording.stabilise
+    assert s.initial.speed == 0.0 and min(s.initial.tension) == pytest.approx(12e3, rel=1e-9)
     beltrs.compile(s)
 
 
 def test_curved_profile_places_the_belt_on_its_idlers():
-    # A concave then a convex curve: the belt's initial polygon must lie on the upper side
-    # of every carry roll (idlers push up), within the guides' 2 cm of the curve.
+    # A concave then a convex curve: the belt is placed along the profile (scene.initial.path,
+    # no guide pulleys), every carry roll touching it from below: the belt over each roll
+    # (read by interpolating the nodes in x) lies within 0.5 mm of the roll's top; measured
+    # 0.1 mm at worst, where a curve begins (the guides' polygon was allowed 30 mm).
     c = Conveyor(profile=[(0, 0), (80, 0), (160, 8), (240, 8)], curve_radii=[300, 400], belt="EP630/4",
                  capacity=200.0, speed=2.0)
     s = c.scene()
-    assert any(p.name.startswith("carry guide") for p in s.pulleys)
-    assert all(p.contact_stiffness == 0 for p in s.pulleys if "guide" in p.name)
-    assert s.recording.stabilise_friction
+    assert [p.name for p in s.pulleys] == ["tail", "head"]
+    assert s.initial is not None and len(s.initial.path) == 4 + 2 * 2 and not s.recording.stabilise
     sim = beltrs.Simulation(s)
     x = sim.state()["node_position"]  # the initial placement
     r = c.radius
@@ -119,7 +121,7 @@ def test_curved_profile_places_the_belt_on_its_idlers():
             continue  # a return roll
         belt_y = np.interp(d.center[0], upper[order, 0], upper[order, 1])
         gap = belt_y - (d.center[1] + d.radius)
-        assert -1e-3 < gap < 0.03, (d.center, gap)
+        assert abs(gap) < 5e-4, (d.center, gap)
 
 
 def test_toml_description_builds_the_same_scene(tmp_path):
@@ -198,8 +200,7 @@ def test_steady_running_agrees_with_din_22101():
     """A builder-made conveyor, started and run to steady speed, against beltrs.statics."""
     c = short()
     p = c.statics()
-    sim = beltrs.Simulation(c.scene())
-    sim.stabilise(tolerance=1e-5, max_steps=400_000)
+    sim = beltrs.Simulation(c.scene())  # the design state at rest: no relaxation
     r = c.radius
     probes = [(L - 10.0, 0.0), (L - 10.0, -2 * r)]  # 10 m before / after the head drum
     data = probe_run(sim, probes, RAMP + 6.0, 0.005)

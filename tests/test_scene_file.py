@@ -178,7 +178,8 @@ CASE_H = hustrulid_loop().to_toml()
         ),
         (
             CASE_H.replace("[solver]", "[solver]\nxyzzy = 1"),
-            r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: time_step, time_step_fraction\)",
+            r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: absolute_tolerance, integrator, "
+            r"relative_tolerance, time_step, time_step_fraction\)",
         ),
         (
             CASE_H.replace("stabilise = true", "stabilize = true"),
@@ -412,6 +413,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`start` and `end`": ("belt_end", None),
         "`[[pulleys]]`": ("pulley", None),
         "`friction`": ("friction", None),
+        "`nonlinear_contact`": ("nonlinear_contact", None),
         "`takeup`": ("takeup", None),
         "`drive`": ("drive", None),
         "`start_curve`": ("start_curve", None),
@@ -425,6 +427,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`[[loads]]`": ("load", None),
         "`[solver]`": ("solver", None),
         "`[recording]`": ("recording", None),
+        "`[initial]`": ("initial", None),
     }
     assert set(engine) == {t for t, _ in tables.values()}
     assert len(sections) == len(tables), list(sections)

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, BeltEnd, Brake, Drive, Friction, Holdback, Idler, Load, Pulley, Recording, Scene, SceneError,
-                    Solver, StartCurve, Takeup)
+from beltrs import (Belt, BeltEnd, Brake, Drive, Friction, Holdback, Idler, Initial, Load, NonlinearContact, Pulley,
+                    Recording, Scene, SceneError, Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 
@@ -22,6 +22,7 @@ TABLES = {
     "belt_end": BeltEnd,
     "pulley": Pulley,
     "friction": Friction,
+    "nonlinear_contact": NonlinearContact,
     "takeup": Takeup,
     "drive": Drive,
     "start_curve": StartCurve,
@@ -35,6 +36,7 @@ TABLES = {
     "load": Load,
     "solver": Solver,
     "recording": Recording,
+    "initial": Initial,
 }
 
 
@@ -156,6 +158,19 @@ def test_a_dict_nested_5000_levels_is_a_scene_error():
         Scene.from_dict(deep)
     with pytest.raises(SceneError, match=r"nested deeper than any scene key"):
         beltrs._beltrs.Simulation(deep)
+
+
+def test_a_list_where_a_table_belongs_is_a_scene_error():
+    # serde's derived structs also read a list of their fields in order, so `belt = []`
+    # compiled as the default belt and later failed as an AttributeError (the campaign's
+    # seed 5157); a table is written with its keys.
+    good = hustrulid_loop(16).to_dict()
+    for key, value in (("belt", []), ("solver", [0.5]), ("pulleys", [[], []])):
+        bad = dict(good, **{key: value})
+        with pytest.raises(SceneError, match=r"(belt|solver|pulleys\[0\]) = \[.*\]: expected a table"):
+            beltrs._beltrs.Simulation(bad)
+        with pytest.raises(SceneError, match=r"expected a table"):
+            beltrs.Simulation(Scene.from_dict(bad))
 
 
 def test_a_checkpoint_gives_back_every_table(tmp_path):

@@ -5,7 +5,7 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, conveyor, scenes, statics, study
+from . import analysis, analytic, conveyor, design_start, plot, scenes, statics, study
 from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
@@ -21,7 +21,9 @@ from .scene import (
     Friction,
     Holdback,
     Idler,
+    Initial,
     Load,
+    NonlinearContact,
     Pulley,
     Recording,
     Scene,
@@ -51,8 +53,10 @@ __all__ = [
     "Holdback",
     "Idler",
     "IdlerContactWarning",
+    "Initial",
     "Load",
     "Model",
+    "NonlinearContact",
     "Motor",
     "NotRelaxedWarning",
     "Pulley",
@@ -72,8 +76,10 @@ __all__ = [
     "analysis",
     "analytic",
     "conveyor",
+    "design_start",
     "load_result",
     "load_scene",
+    "plot",
     "scenes",
     "statics",
     "study",

@@ -37,8 +37,9 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .scene import (Belt, Brake, Drive, Friction, Holdback, Load, Pulley, Recording, Scene, Solver, SpeedController,
-                    StartCurve, Takeup, TorqueFollow)
+from .design_start import START_KINDS
+from .scene import (Belt, Brake, Drive, Friction, Holdback, Initial, Load, Motor, Pulley, Recording, Scene, Solver,
+                    SpeedController, StartCurve, Takeup, TorqueFollow)
 from .statics import check
 
 __all__ = [
@@ -215,6 +216,12 @@ class DriveSpec:
             sharing, :class:`beltrs.TorqueFollow`): it applies share / master's share of
             the master's torque (the drums have one radius). The master needs a
             ``controller``; a follower has no ``start_curve``. Default None.
+        motor: an induction motor started direct on line (:class:`beltrs.Motor`) instead
+            of speed control: the builder sets its ``gear_ratio`` (the belt at ``speed``
+            at the motor's rated speed) and ``rotation`` (the drum's clockwise sense);
+            ``power`` is then its rated power. Default None.
+        flywheel: flywheel on the drive's high-speed shaft, kg*m^2, >= 0 (at the motor's
+            rated speed ``motor_speed``, or the ``motor``'s). Default 0.
     """
 
     location: str = "head"
@@ -226,6 +233,8 @@ class DriveSpec:
     motor_speed: float = 1500.0 * 2 * math.pi / 60
     controller: Optional[SpeedController] = None
     follow: Optional[str] = None
+    motor: Optional[Motor] = None
+    flywheel: float = 0.0
 
     def validate(self, where: str) -> None:
         if self.location not in LOCATIONS:
@@ -240,6 +249,13 @@ class DriveSpec:
             raise SceneError(f"{where}.start_curve = {self.start_curve!r}: expected a beltrs.StartCurve")
         if self.controller is not None and not isinstance(self.controller, SpeedController):
             raise SceneError(f"{where}.controller = {self.controller!r}: expected a beltrs.SpeedController")
+        check(f"{where}.flywheel", self.flywheel, unit="kg*m^2")
+        if self.motor is not None:
+            if not isinstance(self.motor, Motor):
+                raise SceneError(f"{where}.motor = {self.motor!r}: expected a beltrs.Motor")
+            if self.start_curve is not None or self.controller is not None or self.follow is not None:
+                raise SceneError(f"{where}.motor: a motor started direct on line runs on its own curve; "
+                                 "leave start_curve, controller and follow out")
         if self.follow is not None:
             if self.follow not in LOCATIONS or self.follow == self.location:
                 raise SceneError(f"{where}.follow = {self.follow!r}: must be the location of another drive "
@@ -382,6 +398,13 @@ class Conveyor:
             the carry pitch and 30° of arc on the drums.
         damping_ratio: belt's axial damping, fraction of critical per element. Default 0.05.
         gravity: m/s². Default 9.81.
+        start: the design state the scene starts from (:class:`beltrs.Initial`,
+            ``docs/design-start.md``): ``"rest"`` (default; the standstill tensions, the
+            takeup's and the lifts', drives holding, belt at rest) or ``"running"`` (the
+            steady-running tensions of :meth:`statics`, belt, drums and rolls at
+            ``speed``, the drives' start curves already ended). Either way the belt is
+            placed along the profile, stretched to those tensions, with the takeup where
+            the scene puts it: no relaxation.
     """
 
     profile: Sequence[Sequence[float]] = ((0.0, 0.0), (100.0, 0.0))
@@ -406,6 +429,7 @@ class Conveyor:
     element_length: Optional[float] = None
     damping_ratio: float = 0.05
     gravity: float = 9.81
+    start: str = "rest"
 
     # --- derived quantities -------------------------------------------------------------
     @property
@@ -540,9 +564,9 @@ class Conveyor:
             raise SceneError(f"carry.pitch, returns.pitch = {self.carry.pitch!r}, {self.returns.pitch!r}: "
                              f"the strands ({length:.6g} m) need at least two idlers")
         le = self.chosen_element_length
-        if any(_turn(pts, i) != 0.0 for i in range(1, len(pts) - 1)) and le > GUIDE_RADIUS * r:
-            raise SceneError(f"element_length = {le!r}: with vertical curves at most {GUIDE_RADIUS} x the drum "
-                             f"radius ({GUIDE_RADIUS * r:g} m): the curve guides must each hold an element")
+        if self.start not in START_KINDS:
+            raise SceneError(f"start = {self.start!r}: must be one of {', '.join(map(repr, START_KINDS))} (the "
+                             "design state the scene starts from)")
         if le > self.carry.pitch / 2:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
@@ -662,22 +686,25 @@ class Conveyor:
 
     # --- the scene ----------------------------------------------------------------------
     def scene(self, *, elements: Optional[int] = None, time_step_fraction: float = 0.5,
-              duration: Optional[float] = None) -> Scene:
-        """The :class:`beltrs.Scene` of this conveyor (choices: ``docs/conveyor-builder.md``).
+              duration: Optional[float] = None, method: Optional[statics.Method] = None) -> Scene:
+        """The :class:`beltrs.Scene` of this conveyor (choices: ``docs/conveyor-builder.md``),
+        starting from its design state (``start``; :meth:`initial`): no relaxation needed.
 
-        Pulleys, in belt order: "tail", the return strand's curve guides, "head", the carry
-        strand's curve guides. A guide ("carry guide 3", "return guide 1") is a small pulley
-        with zero contact stiffness at a vertical curve: the engine places the belt
-        initially along the tangents of its pulleys, and the guides make that placement
-        follow the curve (a polygon within 2 cm of it, on the idlers' side) instead of the
-        straight chord; they exert no force (the idlers carry the belt there).
+        Pulleys, in belt order: "tail", "head". The belt is placed along the profile (its
+        straights and vertical curves, the return strand a drum diameter below) through
+        ``scene.initial.path``, stretched to the design tensions.
 
         Args:
             elements: belt elements; overrides the chosen element length. Default None.
             time_step_fraction: of the stability limit. Default 0.5.
-            duration: ``recording.duration``, s. Default: the longest start curve + 5 s, or
-                with a ``stop``, at least the stop time + 1.5 x the rigid-belt coasting time
-                M_eq v / F_U + 5 s.
+            duration: ``recording.duration``, s. Default: the longest start curve + 5 s
+                (``start="rest"``), 5 s (``"running"``); with a ``stop``, at least the stop
+                time + 1.5 x the rigid-belt coasting time M_eq v / F_U + 5 s.
+            method: the static calculation a running start takes its tensions from
+                (:class:`beltrs.statics.DIN22101` or :class:`~beltrs.statics.CEMA`).
+                Default DIN 22101 with this conveyor's ``f`` (the resistance the engine's
+                idlers apply, so that the run starts in its own steady state). A start at
+                rest has no running resistance whatever the method.
         """
         self.validate()
         prof = self.carry_profile
@@ -694,19 +721,23 @@ class Conveyor:
         pdyn = self.statics()
         by_loc = {d.location: d for d in self.drives}
         drum_mass = self._drum_mass()
+        running = self.start == "running"
         pulleys: dict[str, Pulley] = {}
         for name, c, direction in (("tail", tail_c, (-d0[0], -d0[1])), ("head", head_c, d1)):
             drive = by_loc.get(name)
             takeup = None
             if self.takeup.location == name:
                 takeup = self._takeup(t_up, direction)
+            engine_drive = None if drive is None else self._drive(drive, pdyn, r)
+            curve = None if engine_drive is None else engine_drive.start_curve
+            if curve is not None and running:  # already at speed: the curve has ended
+                engine_drive = replace(engine_drive, start_curve=replace(
+                    curve, start=-(curve.prestart + curve.ramp)))
             pulleys[name] = Pulley(
                 name=name, center=_round(c), radius=r, mass=drum_mass, inertia=0.8 * drum_mass * r * r,
-                friction=lag, contact_stiffness=1e8, takeup=takeup,
-                drive=None if drive is None else self._drive(drive, pdyn, r))
+                friction=lag, contact_stiffness=1e8, takeup=takeup, drive=engine_drive)
             self._stop_on(pulleys, name)
-        carry_guides, return_guides = _guides(prof, r)
-        plist = [pulleys["tail"], *return_guides, pulleys["head"], *reversed(carry_guides)]
+        plist = [pulleys["tail"], pulleys["head"]]
 
         le = self.chosen_element_length
         # Half-critical contact damping for one node on the rolls: c = 2*0.5*sqrt(k*m).
@@ -722,12 +753,6 @@ class Conveyor:
 
         idlers = idlers_along(prof, self.carry.pitch, **rolls(self.carry, c_carry))
         idlers += idlers_along(prof, self.returns.pitch, offset=-2 * r, **rolls(self.returns, c_return))
-        # A roll where a curve guide sits (on the idlers' side of a convex curve) is left out:
-        # the engine refuses overlapping bodies; its neighbours carry that pitch of belt.
-        guides = carry_guides + return_guides
-        idlers = [d for d in idlers if all(
-            math.hypot(d.center[0] - g.center[0], d.center[1] - g.center[1]) > (g.radius + d.radius) * 1.001
-            for g in guides)]
         loads = []
         if ml > 0:
             start = prof.point(self.loading)[0]
@@ -737,18 +762,81 @@ class Conveyor:
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le))
-        longest = max((self._curve(d).end for d in self.drives), default=0.0) + 5.0
-        if self.stop is not None:
-            # Run past the stop for 1.5 x the rigid-belt coasting time M_eq v / F_U (+ 5 s).
-            coast = self.moving_mass() * self.speed / max(self._running_force(), 1.0)
-            longest = max(longest, float(self.stop.time) + 1.5 * coast + 5.0)
-        # A loaded incline has no equilibrium on frictionless drums (the belt would run back):
-        # relax with friction, the held drive drum gripping the belt (stabilise(friction=True)).
-        inclined = any(abs(float(a[1]) - float(b[1])) > 0 for a, b in zip(pts[:-1], pts[1:]))
+        longest = max((self._curve(d).end for d in self.drives), default=0.0)
+        if duration is None:
+            duration = 5.0 if running else longest + 5.0
+            if self.stop is not None:
+                # Run past the stop for 1.5 x the rigid-belt coasting time M_eq v / F_U (+ 5 s).
+                coast = self.moving_mass() * self.speed / max(self._running_force(), 1.0)
+                duration = max(duration, float(self.stop.time) + 1.5 * coast + 5.0)
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
-                     recording=Recording(duration=longest if duration is None else duration, interval=0.05,
-                                         channels=("tension", "node_position"), stabilise_friction=inclined))
+                     recording=Recording(duration=duration, interval=0.05, channels=("tension", "node_position"),
+                                         stabilise=False),
+                     initial=self.initial(method))
+
+    def design_path(self) -> list[tuple[float, float, float]]:
+        """The belt's path as corners (x, y, radius), m, in the engine's node order
+        (:attr:`beltrs.Initial.path`): from the tail drum's top (where the carry strand
+        meets it) round the tail (two 90° corners of the drum radius), along the return
+        strand (the profile a drum diameter lower; a curve of radius R there has R + 2r when
+        concave, R − 2r when convex), round the head and back along the carry profile (its
+        stations with their curve radii). Node order runs against the direction of travel,
+        as on the pulleys' own path."""
+        self.validate()
+        pts = [np.array(tuple(map(float, p))) for p in self.profile]
+        r = self.radius
+        radii = [float(x) for x in self.curve_radii]
+
+        def left(d: tuple[float, float]) -> np.ndarray:
+            return np.array([-d[1], d[0]])
+
+        d0, d1 = _unit(pts[0], pts[1]), _unit(pts[-2], pts[-1])
+        a = pts[0] - np.array(d0) * r
+        corners = [(a, r), (a - 2 * r * left(d0), r)]
+        curved = [i for i in range(1, len(pts) - 1) if _turn(pts, i) != 0.0]
+        for i in curved:  # the return strand, tail to head
+            na, nb = left(_unit(pts[i - 1], pts[i])), left(_unit(pts[i], pts[i + 1]))
+            miter = (na + nb) / (1 + float(na @ nb))
+            concave = _turn(pts, i) > 0
+            corners.append((pts[i] - 2 * r * miter, radii[i - 1] + (2 * r if concave else -2 * r)))
+        b = pts[-1] + np.array(d1) * r
+        corners += [(b - 2 * r * left(d1), r), (b, r)]
+        for i in reversed(curved):  # the carry strand, head to tail
+            corners.append((pts[i], radii[i - 1]))
+        return [(float(p[0]), float(p[1]), float(rad)) for p, rad in corners]
+
+    def initial(self, method: Optional[statics.Method] = None) -> Initial:
+        """The design state of :meth:`scene` (:class:`beltrs.Initial`), as ``start`` says:
+        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`) or of
+        the loop at standstill (``"rest"``: :func:`beltrs.design_start.at_rest`, DIN 22101
+        with f = 0), laid on :meth:`design_path`: each strand's static sections on its run
+        of the path, each drum's point on its wrap (a drive's T1 → T2 drop spread by the
+        capstan law), node order against travel (speed −``speed`` when running)."""
+        from . import design_start
+
+        corners = self.design_path()
+        length = design_start.path_length(corners)
+        r = self.radius
+        lp = self.carry_profile.length
+        if self.start == "running":
+            method = statics.DIN22101(self.f, self.gravity) if method is None else method
+            profile = self.statics(method)
+        else:
+            profile = statics.tensions(design_start.at_rest(self.loop()), self.belt_mass,
+                                       statics.DIN22101(0.0, self.gravity))
+        wrap = math.pi * r
+        back = length - 2 * wrap - lp  # the return run's length on the path
+        tail = 0.0 if self.takeup.location == "tail" else lp  # loop distance of the tail
+        head = (tail + lp) % (2 * lp)
+        pieces = [
+            design_start.Wrap("tail", path_in=wrap, path_out=0.0),
+            design_start.Run(head, head + lp, path_start=wrap + back, path_end=wrap),
+            design_start.Wrap("head", path_in=2 * wrap + back, path_out=wrap + back),
+            design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
+        ]
+        speed = -self.speed if self.start == "running" else 0.0
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""
@@ -804,21 +892,30 @@ class Conveyor:
         return replace(curve, speed=-curve.speed, creep_speed=creep)
 
     def _drive(self, d: DriveSpec, p: statics.TensionProfile, r: float) -> Drive:
+        if d.motor is not None:
+            speed = d.motor.rated_speed
+            if speed is None or not speed > 0:
+                raise SceneError(f"motor.rated_speed = {speed!r}: give the motor's rated speed, rad/s, > 0")
+            ratio = speed / (self.speed / r)
+            motor = replace(d.motor, gear_ratio=ratio, rotation="cw")
+            return Drive(motor=motor, inertia=d.inertia * ratio**2, flywheel=d.flywheel)
         power = self.motor_power(d.location)
         ratio = d.motor_speed / (self.speed / r)
         rated = power / d.motor_speed * ratio  # N*m at the drum
         if d.follow is not None:
             master = next(m for m in self.drives if m.location == d.follow)
             return Drive(follow=TorqueFollow(master=d.follow, ratio=d.share / master.share),
-                         max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2)
-        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2,
-                     controller=d.controller)
+                         max_torque=d.torque_limit * rated, inertia=(d.inertia + d.flywheel) * ratio**2)
+        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated,
+                     inertia=(d.inertia + d.flywheel) * ratio**2, controller=d.controller)
 
     def motor_power(self, location: str = "head") -> float:
         """Rated power of the drive at ``location``, W (given, or chosen as
         :class:`DriveSpec` says)."""
         for d in self.drives:
             if d.location == location:
+                if d.motor is not None and d.motor.rated_power is not None:
+                    return float(d.motor.rated_power)
                 if d.power is not None:
                     return float(d.power)
                 running = d.share * self._running_force()
@@ -840,8 +937,25 @@ class Conveyor:
         rolls = 0.8 * (self.carry.rotating_mass * prof.length / self.carry.pitch
                        + self.returns.rotating_mass * prof.length / self.returns.pitch)
         drums = 2 * 0.8 * self._drum_mass()
-        motors = sum(d.inertia * (d.motor_speed / self.speed) ** 2 for d in self.drives)  # I ratio^2 / r^2
+        motors = sum(self._shaft_inertia(d) * (self._shaft_speed(d) / self.speed) ** 2
+                     for d in self.drives)  # I ratio^2 / r^2
         return belt + material + rolls + drums + motors
+
+    @staticmethod
+    def _shaft_speed(d: DriveSpec) -> float:
+        """Rated speed of the drive's high-speed shaft, rad/s."""
+        if d.motor is not None and d.motor.rated_speed is not None:
+            return float(d.motor.rated_speed)
+        return float(d.motor_speed)
+
+    @staticmethod
+    def _shaft_inertia(d: DriveSpec) -> float:
+        """Inertia on the drive's high-speed shaft that turns with the belt, kg*m^2: motor
+        and coupling (``inertia``), flywheel, and a rigidly geared DOL motor's rotor."""
+        rotor = 0.0
+        if d.motor is not None and d.motor.coupling is None:
+            rotor = float(d.motor.rotor_inertia)
+        return float(d.inertia) + float(d.flywheel) + rotor
 
     def start_force(self) -> float:
         """Peak drive force of a rigid-belt start along the drives' curves, N:
@@ -878,57 +992,6 @@ def _turn(pts: Sequence[Sequence[float]], i: int) -> float:
     a, b = _unit(pts[i - 1], pts[i]), _unit(pts[i], pts[i + 1])
     phi = math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])
     return 0.0 if abs(phi) < 1e-12 else phi
-
-
-GUIDE_RADIUS = 0.75  #: radius of a curve guide (a zero-contact pulley), × the drum radius
-GUIDE_GAP = 0.02  #: m, largest distance of the initial polygon from a vertical curve
-
-
-def _guides(prof: Profile, r: float) -> tuple[list[Pulley], list[Pulley]]:
-    """Curve guides of the carry and the return strand, each list in the order of travel
-    along the profile (tail to head).
-
-    On each arc of the profile (radius R, turn phi) the belt is placed on a polygon of n
-    sides, n the fewest with a sagitta below GUIDE_GAP. The polygon must lie on the upper
-    side of the idlers (they push up): on a concave curve (centre above) the chords of the
-    arc do, on a convex curve (centre below) the tangent polygon does. The return strand
-    runs 2r further from the centre (concave) or nearer (convex): the same rule holds.
-    A guide's radius is 0.75 r: the engine needs every pulley to hold an element (radius
-    >= element length, at most 30° of the drum's arc = 0.52 r), and the guides of the two
-    strands, 2 r apart, must not overlap."""
-    carry: list[Pulley] = []
-    back: list[Pulley] = []
-    s = 0.0
-    for piece in prof._pieces:
-        if piece.curvature != 0.0:
-            radius = 1.0 / abs(piece.curvature)
-            concave = piece.curvature > 0
-            phi = piece.length / radius
-            n = max(1, math.ceil(phi / math.sqrt(8 * GUIDE_GAP / radius)))
-            centre = prof.point(s)[0] + np.array([-piece.direction[1], piece.direction[0]]) / piece.curvature
-            offset = 2 * r if concave else -2 * r  # the return strand, a drum diameter below
-            for strand, rad, out in (("carry", radius, carry), ("return", radius + offset, back)):
-                # vertex angles, measured from the first tangent point's radius
-                start = prof.point(s)[0] - centre
-                start = start / np.linalg.norm(start)
-                if concave:  # inscribed: vertices on the arc, both tangent points included
-                    verts = [(j * phi / n, rad) for j in range(0, n + 1)]
-                else:  # circumscribed: n sides tangent to the arc; the first and last continue
-                    # the straights, so only the n corners between them are guides
-                    verts = [((j + 0.5) * phi / n, rad / math.cos(phi / (2 * n))) for j in range(n)]
-                sign = 1.0 if piece.curvature > 0 else -1.0
-                for ang, dist in verts:
-                    c, sn = math.cos(sign * ang), math.sin(sign * ang)
-                    u = np.array([c * start[0] - sn * start[1], sn * start[0] + c * start[1]])
-                    vertex = centre + u * dist
-                    inward = -u  # towards the curve's centre
-                    # the belt wraps the guide's outer side, passing through the vertex
-                    out.append(Pulley(
-                        name=f"{strand} guide {len(out) + 1}", center=_round(vertex + inward * GUIDE_RADIUS * r),
-                        radius=GUIDE_RADIUS * r, mass=1.0, inertia=1e-3, contact_stiffness=0.0,
-                        wrap=("cw" if concave else "ccw") if strand == "carry" else ("ccw" if concave else "cw")))
-        s += piece.length
-    return carry, back
 
 
 def _round(p: Sequence[float]) -> tuple[float, float]:
@@ -1006,6 +1069,8 @@ def _read(table: Any) -> Conveyor:
 
             if "start_curve" in dk:
                 dk["start_curve"] = _read_dataclass(StartCurve, dk["start_curve"], f"conveyor.drives[{i}].start_curve")
+            if "motor" in dk:
+                dk["motor"] = _read_dataclass(Motor, dk["motor"], f"conveyor.drives[{i}].motor")
             if "controller" in dk:
                 where = f"conveyor.drives[{i}].controller"
                 dk["controller"] = _read_dataclass(SpeedController, dk["controller"], where)

@@ -6,7 +6,8 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any, Optional
 
-from . import din22101
+from . import _beltrs, din22101
+from ._beltrs import SceneError
 from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 
 __all__ = [
@@ -14,9 +15,11 @@ __all__ = [
     "concave_conveyor",
     "guo_wang_conveyor",
     "guo_wang_din",
+    "guo_wang_statics",
     "hustrulid_loop",
     "hustrulid_torque_pulse",
     "idler_conveyor",
+    "kubas_case_k",
 ]
 
 
@@ -290,6 +293,7 @@ def guo_wang_conveyor(
     f: float = GUO_WANG["f"],
     takeup_tension: float = GUO_WANG["takeup_tension"],
     time_step_fraction: float = 0.5,
+    start: Optional[str] = None,
 ) -> Scene:
     """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (Guo & Wang 2020,
     Table 1; docs/reference-cases.md), started by a speed-controlled drive along ``start_curve``.
@@ -302,8 +306,9 @@ def guo_wang_conveyor(
 
     - Belt: steel cord ST1250, EA = 80 MN (elongation about 0.16 % at 10 % of the rated
       1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
-      critical, elements of ``element_length`` m (0.3: a quarter of the carry pitch, so the
-      polygonal belt does not rattle on the rolls; docs/stability.md).
+      critical, elements of ``element_length`` m (default 0.2: a sixth of the 1.2 m carry
+      pitch, so the polygonal belt does not rattle on the rolls, docs/stability.md, and
+      30 degrees of wrap per element on the 0.8 m drum).
     - Layout: tail pulley ("tail", radius 0.4 m, 500 kg) at (0, 0) on a horizontal
       gravity takeup pulled in -x with 2 x ``takeup_tension`` (default 50 kN per strand, a
       10.2 t counterweight over a sheave), chosen so that the slack side keeps the head
@@ -329,13 +334,20 @@ def guo_wang_conveyor(
             a positive value is converted to the clockwise (negative) sense of this
             layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
         length: centre distance, m. Default 972 (shorter conveyors for quick studies).
-        element_length: target element length, m. Default 0.3.
+        element_length: target element length, m. Default 0.2.
         elements: belt elements; overrides ``element_length`` (for
             :func:`beltrs.study.accuracy_cost`). Default None.
         material: kg per metre of belt on the carry strand. Default 55.6.
         f: DIN 22101 coefficient on every idler. Default 0.02.
         takeup_tension: tension per strand at the tail, N. Default 50 kN.
         time_step_fraction: of the stability limit. Default 0.5.
+        start: the design state to start from (:class:`beltrs.Initial`,
+            ``docs/design-start.md``; :func:`guo_wang_statics` gives its tensions):
+            ``"rest"`` (the standstill tension, 50 kN all round on this level conveyor),
+            ``"running"`` (DIN 22101's steady-running tensions, belt and pulleys at
+            2 m/s, the start curve already ended) or None (default: the belt placed
+            unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
+            run).
     """
     p = GUO_WANG
     if start_curve is None:
@@ -372,10 +384,76 @@ def guo_wang_conveyor(
         elements=elements if elements is not None else math.ceil(path / element_length),
     )
     loads = [Load(mass_per_length=material, start=(5.0, r), end=(length, r))] if material > 0 else []
+    initial = None
+    if start is not None:
+        if start not in ("rest", "running"):
+            raise SceneError(f"start = {start!r}: must be None, 'rest' or 'running' (the design state to start from)")
+        initial = _guo_wang_initial(length, material, f, takeup_tension, start)
+        if start == "running":  # already at speed: the curve has ended
+            head = pulleys[1]
+            drive = replace(head.drive, start_curve=replace(
+                start_curve, start=-(start_curve.prestart + start_curve.ramp)))
+            pulleys[1] = replace(head, drive=drive)
     return Scene(belt=belt, pulleys=pulleys, idlers=idlers, loads=loads,
                  solver=Solver(time_step_fraction=time_step_fraction),
                  recording=Recording(duration=start_curve.prestart + start_curve.ramp + 5.0, interval=0.05,
-                                     channels=("tension", "node_position")))
+                                     channels=("tension", "node_position"), stabilise=start is None),
+                 initial=initial)
+
+
+def guo_wang_statics(length: float = GUO_WANG["length"], *, material: float = GUO_WANG["material"],
+                     f: float = GUO_WANG["f"], takeup_tension: float = GUO_WANG["takeup_tension"],
+                     method: Optional[Any] = None) -> Any:
+    """Case G's loop (:func:`guo_wang_conveyor` with the same arguments) as a
+    :mod:`beltrs.statics` calculation, tensions at every point: tail (the takeup), the carry
+    strand idlered from the tail drum's edge (r = 0.4 m past its centre) to the head drum's,
+    loaded from 5 m after the tail centre (the loading point's F_bA = m'_L·v² there), the
+    head drive, the return strand. ``method``: :class:`beltrs.statics.DIN22101` (default,
+    with ``f``) or :class:`~beltrs.statics.CEMA`. With DIN 22101 the drive tensions of
+    :func:`guo_wang_din` (its lumped form) to 0.01 % (the loading point's place)."""
+    from . import statics
+
+    p = GUO_WANG
+    r = p["drum_radius"]
+    mrc = p["carry_rotating_mass"] / p["carry_pitch"]
+    mrr = p["return_rotating_mass"] / p["return_pitch"]
+    loop = [
+        statics.Point("tail", takeup=takeup_tension),
+        statics.Section(5.0 - r, rotating_mass=mrc, idler_pitch=p["carry_pitch"], name="carry, before loading"),
+        statics.Point("loading", resistance=material * p["speed"] ** 2),
+        statics.Section(length - 5.0 - r, material=material, rotating_mass=mrc, idler_pitch=p["carry_pitch"],
+                        name="carry, loaded"),
+        statics.Point("head", drive=1.0),
+        statics.Section(length - 2 * r, strand="return", rotating_mass=mrr, idler_pitch=p["return_pitch"],
+                        name="return"),
+    ]
+    method = statics.DIN22101(f) if method is None else method
+    return statics.tensions(loop, p["belt_mass"], method)
+
+
+def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: float, start: str) -> Any:
+    """Case G's design state on its pulleys' path (node 0 at the tail's top, node order
+    against travel: tail wrap, return strand, head wrap, carry strand)."""
+    from . import design_start, statics
+
+    r = GUO_WANG["drum_radius"]
+    if start == "running":
+        profile = guo_wang_statics(length, material=material, f=f, takeup_tension=takeup_tension)
+    else:
+        p = GUO_WANG
+        loop = [statics.Point("tail", takeup=takeup_tension), statics.Section(length - 2 * r),
+                statics.Point("head", drive=1.0), statics.Section(length - 2 * r, strand="return")]
+        profile = statics.tensions(loop, p["belt_mass"], statics.DIN22101(0.0))
+    wrap = math.pi * r
+    total = 2 * length + 2 * wrap
+    span = length - 2 * r  # idlered length of each strand in the loop
+    pieces = [
+        design_start.Wrap("tail", path_in=wrap, path_out=0.0),
+        design_start.Run(span, 2 * span, path_start=wrap + length - r, path_end=wrap + r),
+        design_start.Wrap("head", path_in=total - length, path_out=wrap + length),
+        design_start.Run(0.0, span, path_start=total - r, path_end=total - length + r),
+    ]
+    return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0)
 
 
 @dataclass(frozen=True)
@@ -420,3 +498,33 @@ def guo_wang_din(length: float = GUO_WANG["length"], *, material: float = GUO_WA
         carry_per_metre=f * gravity * (mrc + p["belt_mass"] + material),
         return_per_metre=f * gravity * (mrr + p["belt_mass"]),
     )
+
+
+def kubas_case_k(ramp_time: float = 0.3, preload_strain: float = 0.00344) -> Scene:
+    """Case K: Kubas's (2014) poly-V belt transmission with the rigid-body belt
+    (``docs/kubas.md``, ``docs/reference-cases.md``).
+
+    Two pulleys of radius 0.027 m and 2.4e-4 kg*m^2, centres 0.515 m apart, the drive
+    ("drive") at the origin; 150 rigid bodies, 0.096 kg/m; EA = c_tra = 1.52e5 N (c_tra
+    per unit strain), c_tor = 0.026 N*m/rad per joint (EI = c_tor*l), translational damping
+    b_tra = 20.5 N*s/m per joint (as the ratio b_tra/(2*sqrt(EA*rhoA)) = 0.085); Kubas's
+    nonlinear contact (:class:`beltrs.NonlinearContact` defaults) on both pulleys;
+    stick-force friction mu_s = 1.05, mu_k = 1.0 (the creep-rate model of the paper is the
+    other choice); the drive torque rising linearly to 15 N*m counter-clockwise over
+    ``ramp_time``; the driven pulley ("driven") resisting with 15 N*m at 8*pi rad/s,
+    proportional to its speed. Steady running: T1 - T2 = M/r = 555.6 N.
+
+    Args:
+        ramp_time: time the drive torque takes to reach 15 N*m, s, > 0. Default 0.3 (the
+            paper's figure 12).
+        preload_strain: how much shorter than its path round the pulleys the belt is, as
+            a strain (length = path/(1 + strain)), dimensionless. Default 0.00344: a static
+            tension of 555 N (measured) once the bodies have sunk into the pulleys.
+    """
+    from .simulation import _real
+
+    ramp_time = _real("ramp_time", ramp_time, "must be a finite number > 0 (s)", lambda v: v > 0)
+    preload_strain = _real(
+        "preload_strain", preload_strain, "must be a finite number > -1", lambda v: v > -1
+    )
+    return Scene.from_dict(_beltrs.case_k_scene(ramp_time, preload_strain))

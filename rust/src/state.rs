@@ -56,6 +56,20 @@ pub struct State {
     pub node_mass: Vec<f64>,
     /// Where each load's zone is (`crate::loads`).
     pub load_edges: Vec<LoadEdges>,
+    /// Angle φ of each rigid belt body's axis from the x axis, rad (rigid-body belt; empty
+    /// for the node belt). The bodies' mass centres are `position`.
+    pub body_angle: Vec<f64>,
+    /// Angular speed of each rigid belt body, rad/s, at the velocities' instant (empty for
+    /// the node belt).
+    pub body_spin: Vec<f64>,
+    /// The adaptive integrator's next step, s (0: not yet chosen; unused by central
+    /// differences). Part of the state so that a resumed run takes the same steps.
+    pub adaptive_step: f64,
+    /// Steps the adaptive integrator accepted since the model was compiled.
+    pub accepted_steps: u64,
+    /// Steps the adaptive integrator rejected (and retried smaller) since the model was
+    /// compiled.
+    pub rejected_steps: u64,
     /// Speed at which each pulley's deceleration brake began its ramp, rad/s (the pulley's
     /// speed in the first step from its `applied` time); 0 before, and for other pulleys
     /// (`crate::drives::brake`).
@@ -72,7 +86,8 @@ pub struct State {
 }
 
 impl State {
-    /// The state at rest on the initial path.
+    /// The state on the initial path: at rest, or moving as a design start says
+    /// ([`Model::initial_motion`]).
     pub fn initial(model: &Model) -> State {
         let n = model.nodes;
         let position = model.initial_positions.clone();
@@ -86,21 +101,31 @@ impl State {
         let load_edges = crate::loads::initial_edges(&model.loads, &position, model.load_belt());
         let node_mass =
             crate::loads::node_masses(&model.mass, &model.loads, &load_edges, model.load_belt());
+        let motion = model.initial_motion.as_ref();
         State {
             time: 0.0,
             step: 0,
-            velocity: vec![Vector2::zeros(); n],
+            velocity: motion.map_or_else(|| vec![Vector2::zeros(); n], |m| m.velocity.clone()),
             position,
-            pulley_omega: vec![0.0; model.pulleys.len()],
+            pulley_omega: motion.map_or_else(
+                || vec![0.0; model.pulleys.len()],
+                |m| m.pulley_omega.clone(),
+            ),
             pulley_angle: vec![0.0; model.pulleys.len()],
             takeup_travel: vec![0.0; model.pulleys.len()],
             takeup_speed: vec![0.0; model.pulleys.len()],
-            idler_omega: vec![0.0; model.idlers.len()],
+            idler_omega: motion
+                .map_or_else(|| vec![0.0; model.idlers.len()], |m| m.idler_omega.clone()),
             pulley_window: vec![ContactWindow::default(); model.pulleys.len()],
             idler_element,
             drive_work: 0.0,
             node_mass,
             load_edges,
+            body_angle: model.initial_angles.clone(),
+            body_spin: vec![0.0; model.initial_angles.len()],
+            adaptive_step: 0.0,
+            accepted_steps: 0,
+            rejected_steps: 0,
             brake_ramp: vec![0.0; model.pulleys.len()],
             drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
             creep: vec![0.0; model.creep_memory_len()],
@@ -132,6 +157,7 @@ impl State {
         self.pulley_omega.iter_mut().for_each(|w| *w = 0.0);
         self.takeup_speed.iter_mut().for_each(|w| *w = 0.0);
         self.idler_omega.iter_mut().for_each(|w| *w = 0.0);
+        self.body_spin.iter_mut().for_each(|w| *w = 0.0);
     }
 }
 
@@ -148,10 +174,14 @@ pub enum Rigid {
     /// Rotation of idler `k` (`idler_omega[k]`; its angle is not kept: nothing reads it),
     /// rad.
     Idler(usize),
+    /// Rotation of rigid belt body `i` about its mass centre (`body_angle[i]`,
+    /// `body_spin[i]`), rad.
+    Body(usize),
 }
 
 /// The layout of the generalized coordinates: the belt's degrees of freedom (two per
-/// node), then the rigid ones in a fixed order (takeups, pulleys, idlers). Integrators,
+/// node, or per body's mass centre), then the rigid ones in a fixed order (takeups,
+/// pulleys, idlers, and the rigid-body belt's body rotations). Integrators,
 /// relaxations, energies and diagnostics loop over it once instead of per body kind.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct DofLayout {
@@ -174,6 +204,12 @@ impl DofLayout {
         DofLayout { nodes, rigid }
     }
 
+    /// This layout with the rotations of `bodies` rigid belt bodies appended.
+    pub fn with_bodies(mut self, bodies: usize) -> DofLayout {
+        self.rigid.extend((0..bodies).map(Rigid::Body));
+        self
+    }
+
     /// Number of generalized coordinates.
     pub fn len(&self) -> usize {
         2 * self.nodes + self.rigid.len()
@@ -193,6 +229,7 @@ impl State {
             Rigid::Takeup(j) => self.takeup_speed[j],
             Rigid::Pulley(j) => self.pulley_omega[j],
             Rigid::Idler(k) => self.idler_omega[k],
+            Rigid::Body(i) => self.body_spin[i],
         }
     }
 
@@ -203,6 +240,7 @@ impl State {
             Rigid::Takeup(j) => (Some(self.takeup_travel[j]), self.takeup_speed[j]),
             Rigid::Pulley(j) => (Some(self.pulley_angle[j]), self.pulley_omega[j]),
             Rigid::Idler(k) => (None, self.idler_omega[k]),
+            Rigid::Body(i) => (Some(self.body_angle[i]), self.body_spin[i]),
         }
     }
 
@@ -213,6 +251,7 @@ impl State {
             Rigid::Takeup(j) => &mut self.takeup_speed[j],
             Rigid::Pulley(j) => &mut self.pulley_omega[j],
             Rigid::Idler(k) => &mut self.idler_omega[k],
+            Rigid::Body(i) => &mut self.body_spin[i],
         }
     }
 
@@ -224,6 +263,7 @@ impl State {
             Rigid::Takeup(j) => (Some(&mut self.takeup_travel[j]), &mut self.takeup_speed[j]),
             Rigid::Pulley(j) => (Some(&mut self.pulley_angle[j]), &mut self.pulley_omega[j]),
             Rigid::Idler(k) => (None, &mut self.idler_omega[k]),
+            Rigid::Body(i) => (Some(&mut self.body_angle[i]), &mut self.body_spin[i]),
         }
     }
 }

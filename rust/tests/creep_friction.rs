@@ -26,12 +26,11 @@ const LAW: CreepFriction = CreepFriction {
 /// One belt point touching a pulley of radius 1 at the top (normal +y, tangent −x),
 /// moving along x at `vx` with the pulley at rest.
 fn one_contact(vx: f64, other: V2, dt: Option<f64>, creep: f64) -> (f64, Vec<(usize, f64)>) {
-    let contacts = PulleyContacts {
-        node: vec![0],
-        normal: vec![V2::new(0.0, 1.0)],
-        normal_force: vec![100.0],
-        penetration: vec![1e-6],
-    };
+    let mut contacts = PulleyContacts::default();
+    contacts.node.push(0);
+    contacts.normal.push(V2::new(0.0, 1.0));
+    contacts.normal_force.push(100.0);
+    contacts.penetration.push(1e-6);
     let pulley = CreepPulley {
         radius: 1.0,
         inertia: f64::INFINITY,

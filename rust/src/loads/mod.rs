@@ -136,7 +136,7 @@ impl LoadModel {
 }
 
 /// Arc length along `path` of the path point nearest `p`, and the distance to it.
-fn project_on_path(path: &BeltPath, p: V2) -> (f64, f64) {
+pub(crate) fn project_on_path(path: &BeltPath, p: V2) -> (f64, f64) {
     let mut best = (f64::INFINITY, 0.0);
     for (k, seg) in path.segments.iter().enumerate() {
         let (dist, local) = match *seg {

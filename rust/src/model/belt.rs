@@ -19,6 +19,8 @@ pub(super) struct NodeBelt {
     pub bending_stiffness: Vec<f64>,
     /// The ends of an open belt; `None` for a closed loop.
     pub ends: Option<super::open::OpenEnds>,
+    /// Initial speeds of a design start (`None`: at rest).
+    pub motion: Option<super::design::InitialMotion>,
 }
 
 /// Largest error of the tension ratio over a pulley's wrap that the default element
@@ -48,7 +50,20 @@ fn friction_element(scene: &Scene, path: &BeltPath) -> f64 {
 
 /// Discretise the scene's belt on `path`: the belt may be stretched or compressed onto
 /// it by at most `belt.max_placement_strain`, and no element may be longer than the smallest pulley radius.
+///
+/// With a design state (`scene.initial`) the belt is placed stretched to its tensions
+/// instead (`super::design`).
 pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
+    if let Some(initial) = &scene.initial {
+        let d = super::design::place(scene, initial, path)?;
+        return Ok(arrays(
+            scene,
+            d.nodes,
+            d.rest_length,
+            d.positions,
+            Some(d.motion),
+        ));
+    }
     let belt = &scene.belt;
     let belt_length = belt.length.unwrap_or(path.length);
     let min_radius = scene
@@ -126,21 +141,45 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
             ),
         ));
     }
+    if belt.is_open() {
+        return open_belt(scene, path, n, l0);
+    }
+    let initial_positions = if belt.pulley_contact == crate::scene::PulleyContact::Wrap {
+        // Wrap contact measures an element on a pulley along its path round it
+        // (contact::wrap): nodes at equal arc length strain every element equally.
+        let step = path.length / n as f64;
+        (0..n).map(|k| path.point(k as f64 * step)).collect()
+    } else {
+        // Nodal contact: the chord polygon on a pulley is the belt; equal chords.
+        path.equal_chord_nodes(n)?.0
+    };
+    Ok(arrays(scene, n, l0, initial_positions, None))
+}
+
+/// The per-element and per-node arrays of `n` elements of rest length `l0` (m).
+fn arrays(
+    scene: &Scene,
+    n: usize,
+    l0: f64,
+    initial_positions: Vec<Vector2<f64>>,
+    motion: Option<super::design::InitialMotion>,
+) -> NodeBelt {
+    let belt = &scene.belt;
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;
     let m_el = rho * l0;
-    let c = 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt();
-    if belt.is_open() {
-        return open_belt(scene, path, n, l0, (k, c, m_el));
-    }
-    let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
+    let c = match belt.damping_time {
+        // Voigt: b = τ·k (Guo & Wang's σ = Eε + ηε̇ with τ = η/E).
+        Some(tau) => tau * k,
+        None => 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt(),
+    };
     let rest_length = vec![l0; n];
     let axial_stiffness = vec![k; n];
     let axial_damping = vec![c; n];
     let mass = vec![m_el; n];
     let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
     let bending_stiffness = vec![belt.bending_stiffness / l0; n];
-    Ok(NodeBelt {
+    NodeBelt {
         nodes: n,
         element_length: l0,
         initial_positions,
@@ -151,7 +190,8 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
         inv_mass,
         bending_stiffness,
         ends: None,
-    })
+        motion,
+    }
 }
 
 /// An open belt of `elements` elements of rest length `l0` on its open `path`:
@@ -159,46 +199,23 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
 /// arrays keep one entry per node; the last element entry (node n−1 back to node 0) is no
 /// element (zero stiffness and damping; the axial pass skips it). The end nodes carry half
 /// an element's mass plus a hanging mass; they have no bending spring.
-fn open_belt(
-    scene: &Scene,
-    path: &BeltPath,
-    elements: usize,
-    l0: f64,
-    (k, c, m_el): (f64, f64, f64),
-) -> BeltResult<NodeBelt> {
+fn open_belt(scene: &Scene, path: &BeltPath, elements: usize, l0: f64) -> BeltResult<NodeBelt> {
     let n = elements + 1;
     let initial_positions = super::open::place(path, n)?;
     let ends = super::open::ends(scene, &initial_positions);
-    let mut rest_length = vec![l0; n];
-    let mut axial_stiffness = vec![k; n];
-    let mut axial_damping = vec![c; n];
-    (
-        rest_length[n - 1],
-        axial_stiffness[n - 1],
-        axial_damping[n - 1],
-    ) = (l0, 0.0, 0.0);
-    let mut mass = vec![m_el; n];
-    mass[0] = 0.5 * m_el;
-    mass[n - 1] = 0.5 * m_el;
+    let mut b = arrays(scene, n, l0, initial_positions, None);
+    (b.axial_stiffness[n - 1], b.axial_damping[n - 1]) = (0.0, 0.0);
+    let m_el = b.mass[0];
+    b.mass[0] = 0.5 * m_el;
+    b.mass[n - 1] = 0.5 * m_el;
     for (i, e) in [(0, ends.start), (n - 1, ends.end)] {
         if let super::open::EndModel::Mass(m) = e {
-            mass[i] += m;
+            b.mass[i] += m;
         }
     }
-    let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
-    let mut bending_stiffness = vec![scene.belt.bending_stiffness / l0; n];
-    bending_stiffness[0] = 0.0;
-    bending_stiffness[n - 1] = 0.0;
-    Ok(NodeBelt {
-        nodes: n,
-        element_length: l0,
-        initial_positions,
-        rest_length,
-        axial_stiffness,
-        axial_damping,
-        mass,
-        inv_mass,
-        bending_stiffness,
-        ends: Some(ends),
-    })
+    b.inv_mass = b.mass.iter().map(|m| 1.0 / m).collect();
+    b.bending_stiffness[0] = 0.0;
+    b.bending_stiffness[n - 1] = 0.0;
+    b.ends = Some(ends);
+    Ok(b)
 }

@@ -8,6 +8,8 @@
 //! in [`crate::state::State`].
 
 mod belt;
+mod belt_rigid;
+mod design;
 mod idlers;
 mod open;
 mod path;
@@ -16,6 +18,7 @@ mod stable_step;
 mod stages;
 
 pub use belt::FRICTION_RATIO_ERROR;
+pub use design::InitialMotion;
 pub use idlers::IdlerModel;
 pub use open::{EndModel, OpenEnds};
 pub use pulleys::{PulleyModel, TakeupModel};
@@ -27,7 +30,7 @@ use crate::forces;
 use crate::geometry::BeltPath;
 use crate::integrate::Integrator;
 use crate::loads::LoadModel;
-use crate::scene::Scene;
+use crate::scene::{Formulation, Scene};
 use crate::state::DofLayout;
 use nalgebra::Vector2;
 
@@ -70,6 +73,21 @@ pub struct Model {
     pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
+    /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
+    /// false: nodal contact.
+    pub wrap_contact: bool,
+    /// The belt formulation. With [`Formulation::RigidBody`] the "nodes" are the bodies'
+    /// mass centres and the "elements" the joints between them (joint e joins body e and
+    /// e+1): `mass`, `rest_length` (body length), `axial_stiffness` and `axial_damping`
+    /// (translational SDE c_x = EA/l, b_x), `bending_stiffness` (torsional SDE c_φ = EI/l)
+    /// are read per body and per joint (`crate::belt::rigid`).
+    pub formulation: Formulation,
+    /// Body inertias about their mass centres, kg·m² (rigid-body belt; empty otherwise).
+    pub body_inertia: Vec<f64>,
+    /// Torsional SDE damping per joint, N·m·s/rad (rigid-body belt; empty otherwise).
+    pub torsional_damping: Vec<f64>,
+    /// Initial body angles, rad (rigid-body belt; empty otherwise).
+    pub initial_angles: Vec<f64>,
     /// Gravitational acceleration, m/s².
     pub gravity: f64,
     /// Pulleys.
@@ -78,10 +96,15 @@ pub struct Model {
     pub idlers: Vec<IdlerModel>,
     /// Bulk material loads.
     pub loads: Vec<LoadModel>,
-    /// The initial path.
+    /// The initial path round the pulleys (their tangents and wraps).
     pub path: BeltPath,
+    /// The path the belt is placed on when a design state gives one (`initial.path`);
+    /// `None`: on [`Model::path`].
+    pub placement: Option<BeltPath>,
     /// Initial node positions, m.
     pub initial_positions: Vec<Vector2<f64>>,
+    /// Initial speeds of a design start (`scene.initial`); `None`: at rest.
+    pub initial_motion: Option<InitialMotion>,
     /// Stages this scene runs, in order.
     pub stages: Vec<Stage>,
     /// Some pulley has a PI speed controller or a fluid-coupled motor, whose memory the
@@ -132,17 +155,52 @@ impl Model {
     /// Validate the scene and compile it.
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
+        if scene.belt.is_open() {
+            if scene.belt.formulation == Formulation::RigidBody {
+                return Err(BeltError::invalid(
+                    "belt.formulation",
+                    "rigid_body",
+                    "an open belt (belt.start/belt.end) runs on the node belt (node_kelvin_voigt); the rigid-body formulation is for a closed loop",
+                ));
+            }
+            if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
+                return Err(BeltError::invalid(
+                    "belt.pulley_contact",
+                    "wrap",
+                    "an open belt (belt.start/belt.end) meets its pulleys at the nodes (\"nodes\"); wrap contact is for a closed loop",
+                ));
+            }
+            if scene.initial.is_some() {
+                return Err(BeltError::invalid(
+                    "initial",
+                    "a design start",
+                    "an open belt (belt.start/belt.end) starts from its placement; a design start ([initial]) is for a closed loop",
+                ));
+            }
+        }
         let path = if scene.belt.is_open() {
             open::path(scene)?
         } else {
             path::compile(scene)?
         };
-        let belt = belt::compile(scene, &path)?;
+        let placement = match scene.initial.as_ref().filter(|i| !i.path.is_empty()) {
+            Some(initial) => Some(design::path_from_corners(scene, &initial.path)?),
+            None => None,
+        };
+        let on = placement.as_ref().unwrap_or(&path);
+        let formulation = scene.belt.formulation;
+        let (belt, rigid) = match formulation {
+            Formulation::NodeKelvinVoigt => (belt::compile(scene, on)?, None),
+            Formulation::RigidBody => {
+                let (belt, rigid) = belt_rigid::compile(scene, on)?;
+                (belt, Some(rigid))
+            }
+        };
         let mut pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
         // and the uniform-mass fast path).
-        let mut loads = crate::loads::compile(&scene.loads, &path, belt.element_length)?;
+        let mut loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
         loads.retain(|l| l.mass_per_length > 0.0);
         if scene.pulleys.iter().any(|p| {
             p.drive
@@ -162,7 +220,7 @@ impl Model {
             .any(|p| p.control.is_some() || p.motor.as_ref().is_some_and(|m| m.coupling.is_some()));
         let stages = stages::select(scene, &pulleys, &idlers, &loads, belt.ends.as_ref());
         // With loads the node masses change during the run: never read them as uniform.
-        let uniform = if loads.is_empty() {
+        let uniform = if loads.is_empty() && rigid.is_none() {
             forces::Uniform::of(
                 &belt.axial_stiffness,
                 &belt.axial_damping,
@@ -196,16 +254,26 @@ impl Model {
             bending_stiffness: belt.bending_stiffness,
             uniform,
             tension_only: scene.belt.tension_only,
+            wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
+            formulation,
             gravity: scene.gravity,
-            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()),
+            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len())
+                .with_bodies(if rigid.is_some() { belt.nodes } else { 0 }),
             pulleys,
             idlers,
             loads,
             path,
+            placement,
             initial_positions: belt.initial_positions,
+            initial_motion: belt.motion,
+            body_inertia: rigid.as_ref().map_or(Vec::new(), |r| r.inertia.clone()),
+            torsional_damping: rigid
+                .as_ref()
+                .map_or(Vec::new(), |r| r.torsional_damping.clone()),
+            initial_angles: rigid.map_or(Vec::new(), |r| r.angles),
             stages,
             has_drive_memory,
-            integrator: Integrator::CentralDifference,
+            integrator: Integrator::of(scene),
             dt: 0.0,
             dt_limit: 0.0,
             dt_cause: String::new(),
@@ -244,6 +312,12 @@ impl Model {
         } else {
             0
         }
+    }
+
+    /// True for the rigid-body belt ([`Formulation::RigidBody`]).
+    #[inline]
+    pub fn is_rigid(&self) -> bool {
+        self.formulation == Formulation::RigidBody
     }
 
     /// True if the compiled model runs `stage`.

@@ -282,6 +282,24 @@ impl Scene {
     pub fn validate(&self) -> BeltResult<()> {
         check_non_negative("gravity", self.gravity)?;
         self.recording.validate()?;
+        if let Some(initial) = &self.initial {
+            initial.validate()?;
+            if let Some(length) = self.belt.length {
+                return Err(BeltError::invalid(
+                    "belt.length",
+                    length,
+                    "give belt.length or an [initial] design state, not both: the design tensions fix the unstretched length that fits the path",
+                ));
+            }
+            if self.recording.stabilise {
+                return Err(BeltError::invalid(
+                    "recording.stabilise",
+                    true,
+                    "must be false with an [initial] design state: the design state replaces the static relaxation (which would undo its tensions and speeds)",
+                ));
+            }
+        }
+        self.validate_choices()?;
         let b = &self.belt;
         check_positive("belt.axial_stiffness", b.axial_stiffness)?;
         check_positive("belt.mass_per_length", b.mass_per_length)?;

@@ -1,0 +1,503 @@
+//! The design-state start (the scene's `[initial]` table, `docs/design-start.md`): the belt
+//! placed on its path already stretched to the design tensions and moving at the design
+//! speed, so that a run needs no static relaxation.
+//!
+//! Placement. With T(s) the design tension at arc length s of the path and EA the axial
+//! stiffness, element e of rest length l⁰ must have the chord l⁰·(1 + T/EA) (the engine's
+//! tension is EA·(chord/l⁰ − 1), thesis eq. 4.1). The nodes are walked along the path with
+//! these chords, and l⁰ is solved (secant) so that the n-th chord closes the loop exactly:
+//! the unstretched belt length n·l⁰ is then ≈ ∫ ds/(1 + T/EA). On a drum with nodal
+//! penalty contact of stiffness k a node carrying N = 2T·sin(φ/2) (φ the element's angle)
+//! sits δ = N/k inside the radius r; its chords there shrink by (r − δ)/r, which the walk
+//! pre-compensates (chord/(1 − δ/r)) before the nodes are moved in by δ. Without this a
+//! 0.4 m drum at 50 kN and 1e8 N/m would lose 6·10⁻⁴ of strain on the wrap, as much as the
+//! design strain itself.
+//!
+//! Motion. Every node gets the speed along the path's tangent, every pulley the path runs
+//! round and every idler with friction the speed that rolls it with the belt. The
+//! central-difference velocities are half-step values; taking the speeds at t = 0 instead
+//! of t − Δt/2 errs by Δt·v²/r on a drum (about 10⁻⁵ m/s): negligible.
+
+use crate::error::{BeltError, BeltResult};
+use crate::geometry::{BeltPath, Segment};
+use crate::scene::{InitialState, Scene};
+use nalgebra::Vector2;
+use std::f64::consts::PI;
+
+type V2 = Vector2<f64>;
+
+/// Largest sweep of one arc piece of a path corner that is not a pulley's wrap (a vertical
+/// curve), rad: 5°. Curves are split so that a bulk load's zone, which is told from the
+/// other run by the pulley wraps it crosses (`crate::loads::WRAP_TOLERANCE`, 10°), never
+/// mistakes a long curve for a wrap.
+const CURVE_PIECE: f64 = PI / 36.0;
+
+/// Largest turn at one corner of a given path, rad (179°): a 180° drum wrap is two corners.
+const MAX_TURN: f64 = PI * 179.0 / 180.0;
+
+/// The speeds a design start gives every body at t = 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialMotion {
+    /// Node velocities, m/s.
+    pub velocity: Vec<V2>,
+    /// Pulley angular speeds, rad/s (counter-clockwise positive).
+    pub pulley_omega: Vec<f64>,
+    /// Idler angular speeds, rad/s.
+    pub idler_omega: Vec<f64>,
+}
+
+/// The placed belt of a design start.
+pub(super) struct DesignPlacement {
+    /// Number of nodes (= elements).
+    pub nodes: usize,
+    /// Element rest length l⁰, m.
+    pub rest_length: f64,
+    /// Node positions, m.
+    pub positions: Vec<V2>,
+    /// Initial speeds.
+    pub motion: InitialMotion,
+}
+
+/// True if the arc (`center`, `radius`) is the wrap of a pulley of the scene; returns the
+/// pulley's contact stiffness (N/m).
+fn pulley_of_arc(scene: &Scene, center: V2, radius: f64) -> Option<(usize, f64)> {
+    scene.pulleys.iter().enumerate().find_map(|(j, p)| {
+        let c = V2::new(p.center[0], p.center[1]);
+        let tol = 1e-6 * p.radius + 1e-9;
+        ((c - center).norm() <= tol && (p.radius - radius).abs() <= tol)
+            .then_some((j, p.contact_stiffness))
+    })
+}
+
+/// The closed path through `corners` (x, y, radius) of `initial.path`: straight spans
+/// between the corners, each corner rounded by an arc of its radius tangent to both spans;
+/// curve arcs (no pulley's wrap) are split into pieces of at most [`CURVE_PIECE`].
+/// Errors name the corner and the rule.
+pub(super) fn path_from_corners(scene: &Scene, corners: &[[f64; 3]]) -> BeltResult<BeltPath> {
+    let m = corners.len();
+    let at = |k: usize| V2::new(corners[k % m][0], corners[k % m][1]);
+    let mut dirs = Vec::with_capacity(m);
+    let mut lens = Vec::with_capacity(m);
+    for k in 0..m {
+        let d = at(k + 1) - at(k);
+        let len = d.norm();
+        if len <= 0.0 {
+            return Err(BeltError::invalid(
+                format!("initial.path[{}]", (k + 1) % m),
+                format!("[{}, {}]", at(k + 1).x, at(k + 1).y),
+                "repeats the previous corner",
+            ));
+        }
+        dirs.push(d / len);
+        lens.push(len);
+    }
+    // Turn and tangent length at each corner (corner k joins span k−1 and span k).
+    let mut turn = vec![0.0; m];
+    let mut tangent = vec![0.0; m];
+    for k in 0..m {
+        let (a, b) = (dirs[(k + m - 1) % m], dirs[k]);
+        let phi = (a.x * b.y - a.y * b.x).atan2(a.dot(&b));
+        let r = corners[k][2];
+        if phi.abs() > MAX_TURN {
+            return Err(BeltError::invalid(
+                format!("initial.path[{k}]"),
+                format!("[{}, {}, {}]", corners[k][0], corners[k][1], r),
+                format!(
+                    "the path turns by {:.2}° here, more than 179°: give a drum's 180° wrap as two 90° corners",
+                    phi.abs().to_degrees()
+                ),
+            ));
+        }
+        if phi.abs() > 1e-12 && r <= 0.0 {
+            return Err(BeltError::invalid(
+                format!("initial.path[{k}][2]"),
+                r,
+                format!(
+                    "the path turns by {:.4}° at this corner: a belt cannot kink, give the corner a radius > 0 (m: the drum's or the curve's)",
+                    phi.abs().to_degrees()
+                ),
+            ));
+        }
+        turn[k] = if phi.abs() > 1e-12 { phi } else { 0.0 };
+        tangent[k] = r * (turn[k].abs() / 2.0).tan();
+    }
+    for k in 0..m {
+        let j = (k + 1) % m;
+        if tangent[k] + tangent[j] > lens[k] * (1.0 + 1e-9) {
+            return Err(BeltError::invalid(
+                format!("initial.path[{j}][2]"),
+                corners[j][2],
+                format!(
+                    "the arcs at corners {k} and {j} need {:.6} m of the {:.6} m span between them: a radius is too large",
+                    tangent[k] + tangent[j],
+                    lens[k]
+                ),
+            ));
+        }
+    }
+    let mut segments = Vec::new();
+    for k in 0..m {
+        let (din, dout) = (dirs[(k + m - 1) % m], dirs[k]);
+        let c = at(k);
+        if turn[k] != 0.0 {
+            let r = corners[k][2];
+            let p_in = c - din * tangent[k];
+            let left = V2::new(-din.y, din.x);
+            let center = p_in + left * (r * turn[k].signum());
+            let start = (p_in - center).y.atan2((p_in - center).x);
+            let pieces = if pulley_of_arc(scene, center, r).is_some() {
+                1
+            } else {
+                (turn[k].abs() / CURVE_PIECE).ceil() as usize
+            };
+            let step = turn[k] / pieces as f64;
+            for q in 0..pieces {
+                segments.push(Segment::Arc {
+                    center,
+                    radius: r,
+                    start: start + step * q as f64,
+                    sweep: step,
+                });
+            }
+        }
+        let a = c + dout * tangent[k];
+        let b = at(k + 1) - dout * tangent[(k + 1) % m];
+        segments.push(Segment::Line { a, b });
+    }
+    let mut starts = Vec::with_capacity(segments.len());
+    let mut total = 0.0;
+    for s in &segments {
+        starts.push(total);
+        total += s.length();
+    }
+    let path = BeltPath {
+        segments,
+        starts,
+        length: total,
+        wrap_angles: Vec::new(),
+    };
+    check_clear(scene, &path)?;
+    Ok(path)
+}
+
+/// A given path may not pass inside a pulley or an idler with contact (the belt would start
+/// inside it).
+fn check_clear(scene: &Scene, path: &BeltPath) -> BeltResult<()> {
+    let bodies = scene
+        .pulleys
+        .iter()
+        .enumerate()
+        .map(|(j, p)| {
+            (
+                format!("pulleys[{j}]"),
+                p.center,
+                p.radius,
+                p.contact_stiffness,
+            )
+        })
+        .chain(scene.idlers.iter().enumerate().map(|(k, d)| {
+            (
+                format!("idlers[{k}]"),
+                d.center,
+                d.radius,
+                d.contact_stiffness,
+            )
+        }));
+    for (name, center, radius, k) in bodies {
+        if k == 0.0 {
+            continue;
+        }
+        let (s, dist) = crate::loads::project_on_path(path, V2::new(center[0], center[1]));
+        if dist < radius * (1.0 - 1e-6) - 1e-9 {
+            return Err(BeltError::invalid(
+                "initial.path",
+                format!("{} corners", path.segments.len()),
+                format!(
+                    "passes {dist:.6} m from the centre of {name} (radius {radius} m) at {s:.6} m along the path: the belt would start inside it"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Unit tangent of `path` at arc length `s` (taken modulo the length), in node order.
+pub(crate) fn tangent(path: &BeltPath, s: f64) -> V2 {
+    let s = s.rem_euclid(path.length);
+    let k = path.starts.partition_point(|&x| x <= s).max(1) - 1;
+    match path.segments[k] {
+        Segment::Line { a, b } => {
+            let d = b - a;
+            let n = d.norm();
+            if n > 0.0 {
+                d / n
+            } else {
+                tangent(path, path.starts[(k + 1) % path.starts.len()])
+            }
+        }
+        Segment::Arc {
+            radius,
+            start,
+            sweep,
+            ..
+        } => {
+            let angle = start + sweep.signum() * (s - path.starts[k]) / radius;
+            V2::new(-angle.sin(), angle.cos()) * sweep.signum()
+        }
+    }
+}
+
+/// A contact wrap on the path: its arc-length range, centre, radius and contact stiffness.
+struct ContactWrap {
+    from: f64,
+    to: f64,
+    center: V2,
+    radius: f64,
+    stiffness: f64,
+    pulley: usize,
+}
+
+/// Place the belt of `scene` on `path` at the design state `init` (see the module docs).
+pub(super) fn place(
+    scene: &Scene,
+    init: &InitialState,
+    path: &BeltPath,
+) -> BeltResult<DesignPlacement> {
+    let length = path.length;
+    if let Some((i, &d)) = init
+        .distance
+        .iter()
+        .enumerate()
+        .find(|(_, d)| **d >= length)
+    {
+        return Err(BeltError::invalid(
+            format!("initial.distance[{i}]"),
+            d,
+            format!("must be below the path length {length:.6} m (distances run from node 0 round the loop)"),
+        ));
+    }
+    let belt = &scene.belt;
+    let ea = belt.axial_stiffness;
+    for (i, &t) in init.tension.iter().enumerate() {
+        if t / ea > belt.max_placement_strain {
+            return Err(BeltError::invalid(
+                format!("initial.tension[{i}]"),
+                t,
+                format!(
+                    "stretches the belt (EA = {ea} N) by {:.2} %, beyond belt.max_placement_strain = {} % (check the units)",
+                    100.0 * t / ea,
+                    100.0 * belt.max_placement_strain
+                ),
+            ));
+        }
+    }
+    let strain = |s: f64| init.tension_at(s, length) / ea;
+    // Unstretched length ∫ ds/(1 + ε), midpoint rule (it only sizes the elements and
+    // starts the closure solve).
+    let samples = 4096usize.max(8 * init.tension.len());
+    let h = length / samples as f64;
+    let rest: f64 = (0..samples)
+        .map(|i| h / (1.0 + strain((i as f64 + 0.5) * h)))
+        .sum();
+    let min_radius = scene
+        .pulleys
+        .iter()
+        .map(|p| p.radius)
+        .fold(f64::INFINITY, f64::min);
+    let n = match belt.elements {
+        Some(n) => n,
+        None => {
+            let wanted = (rest / (belt.max_element_angle * min_radius)).ceil();
+            if wanted > crate::scene::MAX_ELEMENTS as f64 {
+                return Err(BeltError::invalid(
+                    "belt.max_element_angle",
+                    belt.max_element_angle,
+                    format!("a {rest} m belt needs {wanted:e} elements of at most this arc on the smallest pulley (radius {min_radius} m); give belt.elements or check the units"),
+                ));
+            }
+            (wanted as usize).max(3)
+        }
+    };
+    let wraps: Vec<ContactWrap> = path
+        .segments
+        .iter()
+        .zip(&path.starts)
+        .filter_map(|(seg, &from)| match *seg {
+            Segment::Arc { center, radius, .. } => pulley_of_arc(scene, center, radius)
+                .filter(|&(_, k)| k > 0.0)
+                .map(|(pulley, stiffness)| ContactWrap {
+                    from,
+                    to: from + seg.length(),
+                    center,
+                    radius,
+                    stiffness,
+                    pulley,
+                }),
+            _ => None,
+        })
+        .collect();
+    let wrap_at = |s: f64| {
+        let s = s.rem_euclid(length);
+        wraps.iter().find(|w| s >= w.from && s <= w.to)
+    };
+    for w in &wraps {
+        let t = init.tension_at(0.5 * (w.from + w.to), length);
+        let l0 = rest / n as f64;
+        let sink = 2.0 * t * (0.5 * l0 / w.radius).sin() / w.stiffness;
+        if sink > 0.1 * w.radius {
+            return Err(BeltError::invalid(
+                format!("pulleys[{}].contact_stiffness", w.pulley),
+                w.stiffness,
+                format!("is too soft for the design tension {t:.6} N: each node would sink {sink:.3e} m, more than a tenth of the radius {} m", w.radius),
+            ));
+        }
+    }
+    let point = |s: f64| path.point(s);
+    // Walk n elements from node 0: element e gets the chord l⁰·(1 + T/EA) at its middle
+    // plus `extra[e]` (what sinking its nodes into a drum will take off it).
+    let walk = |l0: f64, extra: &[f64], mut out: Option<&mut Vec<f64>>| -> BeltResult<f64> {
+        let mut s = 0.0;
+        for e in extra {
+            if let Some(o) = out.as_deref_mut() {
+                o.push(s);
+            }
+            // the tension at the element's middle: half its stretched length on
+            let guess = l0 * (1.0 + strain(s + 0.5 * l0));
+            let chord = l0 * (1.0 + strain(s + 0.5 * guess)) + e;
+            s = crate::geometry::next_at_chord_on(point, s, chord);
+            crate::interrupt::check(64)?;
+        }
+        Ok(s - length)
+    };
+    // l⁰ that closes the loop: secant (the walk is nearly linear in it, slope ≈ n).
+    let close = |extra: &[f64]| -> BeltResult<f64> {
+        let (mut a, mut b) = (rest / n as f64, rest / n as f64 * (1.0 - 1e-4));
+        let (mut fa, mut fb) = (walk(a, extra, None)?, walk(b, extra, None)?);
+        let tolerance = 1e-12 * length;
+        for _ in 0..40 {
+            if fb.abs() <= tolerance || fb == fa {
+                break;
+            }
+            let c = b - fb * (b - a) / (fb - fa);
+            (a, fa) = (b, fb);
+            b = c;
+            fb = walk(b, extra, None)?;
+            if (b - a).abs() <= 1e-14 * b {
+                break; // at the walk's rounding noise
+            }
+        }
+        if fb.is_nan() || fb.abs() > 1e-9 * length {
+            return Err(BeltError::invalid(
+                "initial",
+                format!("a closure gap of {fb:e} m"),
+                "the design placement did not close round the path (the tension table may change too fast for the elements)",
+            ));
+        }
+        Ok(b)
+    };
+    // Sink each node on a contact wrap by its penetration N/k, N the resultant of the design
+    // tensions of its two elements along the inward normal.
+    let sink = |nominal: &[V2]| -> Vec<V2> {
+        let mut positions = nominal.to_vec();
+        for i in 0..n {
+            let x = nominal[i];
+            let (s, _) = crate::loads::project_on_path(path, x);
+            let Some(w) = wrap_at(s) else { continue };
+            let (prev, next) = (nominal[(i + n - 1) % n], nominal[(i + 1) % n]);
+            let mid = |p: V2, q: V2| crate::loads::project_on_path(path, 0.5 * (p + q)).0;
+            let t_prev = init.tension_at(mid(prev, x), length);
+            let t_next = init.tension_at(mid(x, next), length);
+            let force = (next - x).normalize() * t_next + (prev - x).normalize() * t_prev;
+            let inward = (w.center - x).normalize();
+            positions[i] = x + inward * (force.dot(&inward).max(0.0) / w.stiffness);
+        }
+        positions
+    };
+    // Sinking shortens the chords on a wrap (by about δ/r) and, less, those running onto
+    // it: walk again with each element lengthened by what the last sinking took off it
+    // (a fixed point; the second correction is below 10⁻³ of the first).
+    let mut extra = vec![0.0; n];
+    let mut l0 = close(&extra)?;
+    let mut at = Vec::with_capacity(n);
+    let mut positions = Vec::new();
+    for pass in 0..3 {
+        at.clear();
+        walk(l0, &extra, Some(&mut at))?;
+        let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
+        positions = if wraps.is_empty() {
+            nominal
+        } else {
+            sink(&nominal)
+        };
+        if wraps.is_empty() || pass == 2 {
+            break;
+        }
+        for e in 0..n {
+            let chord = (positions[(e + 1) % n] - positions[e]).norm();
+            let guess = l0 * (1.0 + strain(at[e] + 0.5 * l0));
+            let target = l0 * (1.0 + strain(at[e] + 0.5 * guess));
+            extra[e] += target - chord;
+        }
+        l0 = close(&extra)?;
+    }
+    if l0 > min_radius {
+        return Err(BeltError::invalid(
+            "belt.elements",
+            n,
+            format!("elements of {l0:.6} m are longer than the smallest pulley radius {min_radius} m can hold (limit: one radius, a 60° chord); use more elements"),
+        ));
+    }
+    let speed = init.speed;
+    // along the placed belt: the tangent of the placement curve (central difference)
+    let h = 1e-4 * l0;
+    let velocity = at
+        .iter()
+        .map(|&s| {
+            let d = point(s + h) - point(s - h);
+            let n = d.norm();
+            if n > 0.0 {
+                d * (speed / n)
+            } else {
+                tangent(path, s) * speed
+            }
+        })
+        .collect();
+    // A body the path runs round turns with the belt: its surface at the belt, ω ẑ × r
+    // (r from its centre to the nearest path point), moves at the belt's velocity v t.
+    let rolling = |center: [f64; 2], radius: f64, turns: bool| -> f64 {
+        if !turns || speed == 0.0 {
+            return 0.0;
+        }
+        let c = V2::new(center[0], center[1]);
+        let (s, dist) = crate::loads::project_on_path(path, c);
+        if dist <= 0.0 || (dist - radius).abs() > 0.05 * radius {
+            return 0.0; // the belt does not run round it
+        }
+        let (t, r) = (tangent(path, s), path.point(s) - c);
+        speed * (t.y * r.x - t.x * r.y) / (dist * dist)
+    };
+    let pulley_omega = scene
+        .pulleys
+        .iter()
+        .map(|p| rolling(p.center, p.radius, true))
+        .collect();
+    let idler_omega = scene
+        .idlers
+        .iter()
+        .map(|d| rolling(d.center, d.radius, !d.friction.is_none()))
+        .collect();
+    Ok(DesignPlacement {
+        nodes: n,
+        rest_length: l0,
+        positions,
+        motion: InitialMotion {
+            velocity,
+            pulley_omega,
+            idler_omega,
+        },
+    })
+}
+
+#[cfg(test)]
+#[path = "design_tests.rs"]
+mod tests;

@@ -1,0 +1,299 @@
+"""Starting from the static design state (scene ``initial``, beltrs.design_start,
+Conveyor(start=...)): the placement against the tensions it was given, a running start in
+its own steady state, the agreement of the dynamic drive tensions with beltrs.statics, the
+rigid-body limit F = M_eq·a (thesis §1.4), the takeup travel of a loaded start against
+the change in the belt's elastic length, and bad input on every path."""
+
+import math
+
+import numpy as np
+import pytest
+
+import beltrs
+from beltrs import design_start, statics
+from beltrs.conveyor import BeltClass, Conveyor, DriveSpec, TakeupSpec
+
+
+def loop_scene(**initial):
+    """Two 0.5 m pulleys 4 m apart, no gravity, EA = 1 MN, 100 elements."""
+    return beltrs.Scene(
+        belt=beltrs.Belt(axial_stiffness=1e6, mass_per_length=2.0, elements=100, damping_ratio=0.05),
+        pulleys=[
+            beltrs.Pulley(name="left", center=(0.0, 0.0), radius=0.5, contact_stiffness=1e8),
+            beltrs.Pulley(name="right", center=(4.0, 0.0), radius=0.5, contact_stiffness=1e8),
+        ],
+        gravity=0.0,
+        recording=beltrs.Recording(stabilise=False),
+        initial=beltrs.Initial(**initial),
+    )
+
+
+def test_uniform_design_tension_is_placed_exactly():
+    # 10 kN everywhere: every element, on the spans and on the wraps (where the nodes sink
+    # by N/k into the penalty contact), reads 10 kN, and stays so (a belt in equilibrium).
+    scene = loop_scene(tension=(10e3,))
+    sim = beltrs.Simulation(scene)
+    t = sim.tensions()
+    np.testing.assert_allclose(t, 10e3, rtol=2e-3)
+    # the unstretched length: path / (1 + T/EA), less the polygon's shortfall on the drums
+    # (elements of 0.22 rad: θ²/24 = 2e-3 of the 3.1 m of wraps)
+    path = 2 * 4.0 + 2 * math.pi * 0.5
+    assert sim.rest_length.sum() == pytest.approx(path / 1.01, rel=1e-3)
+    sim.run(0.05, record_interval=0.01, tension=False, node_position=False, node_velocity=False)
+    # in equilibrium, it stays so: measured ±0.6 % (the nodes where the belt runs onto a
+    # drum sink by their share of the contact only approximately)
+    np.testing.assert_allclose(sim.tensions(), 10e3, rtol=1e-2)
+
+
+def test_tension_table_is_followed_and_speed_set():
+    # Tension rising linearly round the loop from 5 to 15 kN and back: each element's
+    # tension equals the table at its middle; every node moves at 3 m/s along the path,
+    # each pulley at 3 / 0.5 rad/s (counter-clockwise wraps).
+    path = 2 * 4.0 + 2 * math.pi * 0.5
+    scene = loop_scene(tension=(5e3, 15e3), distance=(0.0, path / 2), speed=3.0)
+    sim = beltrs.Simulation(scene)
+    x = sim.state()["node_position"]
+    t = sim.tensions()
+    rest = sim.rest_length
+    # arc length of each element's middle: cumulative stretched lengths
+    chord = np.linalg.norm(np.roll(x, -1, axis=0) - x, axis=1)
+    mid = np.cumsum(chord) - chord / 2
+    expect = np.interp(mid, [0, path / 2, path], [5e3, 15e3, 5e3])
+    np.testing.assert_allclose(t, expect, rtol=0, atol=60.0)  # 0.4 % of 15 kN: drum-edge nodes
+    assert np.all(rest == rest[0])
+    v = np.linalg.norm(sim.state()["node_velocity_half_step"], axis=1)
+    np.testing.assert_allclose(v, 3.0, rtol=1e-6)
+    np.testing.assert_allclose(sim.state()["pulley_speed"], 6.0, rtol=1e-12)
+
+
+def test_running_start_of_case_g_is_steady():
+    """Case G shortened to 120 m, started at running speed from DIN 22101's tensions: the
+    drive tensions hold their design values through a 2 s settle (no relaxation at all)."""
+    scene = beltrs.scenes.guo_wang_conveyor(length=120.0, start="running")
+    din = beltrs.scenes.guo_wang_statics(length=120.0)
+    sim = beltrs.Simulation(scene)
+    probes = [(110.0, 0.4), (110.0, -0.4)]
+    data = beltrs.analysis.probe_run(sim, probes, 2.0, 0.005)
+    t = data["time"]
+    late = t >= 1.0
+    t1, t2 = data["tension"][late].mean(axis=0)
+    # DIN at the probes: 10 m before the head on the carry (loop distance 120 - 0.8 - 10),
+    # 10 m after it on the return
+    d1, d2 = din.along(120.0 - 0.8 - 10.0), din.along(120.0 - 0.8 + 10.0)
+    assert t1 == pytest.approx(d1, rel=0.03)
+    assert t2 == pytest.approx(d2, rel=0.03)
+    speed = -data["pulley_speed"][:, 1] * 0.4
+    np.testing.assert_allclose(speed, 2.0, rtol=1e-9)
+
+
+# --- the builder --------------------------------------------------------------------------
+L = 150.0
+
+
+def short(**kw):
+    kw.setdefault("drives", [DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0))])
+    return Conveyor(profile=[(0, 0), (L, 0)], belt="ST1250", capacity=400.0, speed=2.0, **kw)
+
+
+def test_builder_running_start_agrees_with_statics_within_3_percent():
+    """Issue 12's agreement target at default settings: a builder conveyor started at
+    running speed from its design state, T1 and T2 at the drive (10 m from the drum, mean
+    of the last 2 s of a 4 s run) against Conveyor.statics() at the same places."""
+    c = short(start="running")
+    p = c.statics()
+    sim = beltrs.Simulation(c.scene())
+    r = c.radius
+    data = beltrs.analysis.probe_run(sim, [(L - 10.0, 0.0), (L - 10.0, -2 * r)], 4.0, 0.005)
+    window = data["time"] >= 2.0
+    t1, t2 = data["tension"][window].mean(axis=0)
+    d1, d2 = p.along(L - 10.0), p.along(L + 10.0)
+    assert t1 == pytest.approx(d1, rel=0.03)
+    assert t2 == pytest.approx(d2, rel=0.03)
+
+
+def test_builder_rest_start_holds_still():
+    # At rest from the standstill tensions on a loaded incline with a vertical curve, the
+    # drive holding: the drums hold the belt (no creep along the path), and in 0.5 s the
+    # belt only settles into its sag between the rolls (the placement runs straight from
+    # roll to roll): the mean tension moves by under 1 %, the takeup by millimetres.
+    c = Conveyor(profile=[(0, 0), (60, 3), (120, 3)], curve_radii=[400.0], belt="EP630/4", capacity=150.0,
+                 speed=1.5, takeup=TakeupSpec("tail", tension=20e3),
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=1.5, ramp=3.0,
+                                                                          start=10.0))])
+    s = c.scene()
+    assert [p.name for p in s.pulleys] == ["tail", "head"]  # no guides: placed along the profile
+    sim = beltrs.Simulation(s)
+    t0 = sim.tensions().copy()
+    # the standstill tensions: the takeup's plus the lifts (DIN 22101 with f = 0)
+    rest = beltrs.statics.tensions(design_start.at_rest(c.loop()), c.belt_mass, statics.DIN22101(0.0))
+    assert t0.max() == pytest.approx(rest.max, rel=0.01)
+    res = sim.run(0.5, record_interval=0.05, tension=True, node_position=False, node_velocity=False)
+    assert abs(res.tension[-1].mean() / t0.mean() - 1) < 0.01
+    head = s.pulley_index("head")
+    assert np.abs(res.pulley_speed[:, head]).max() < 1e-6  # rad/s: held by its drive
+    assert np.abs(res.pulley_speed[:, 1 - head]).max() < 0.05  # the tail turns as the takeup settles
+    assert abs(res.takeup_travel[-1, 0]) < 5e-3
+
+
+# --- rigid-body limit ---------------------------------------------------------------------
+def test_slow_start_of_a_stiff_belt_approaches_f_equals_m_a():
+    """Thesis §1.4 (CEMA): a rigid belt accelerated at a needs F = M_eq·a over its running
+    resistance R. Integrated over a start from rest to v (the work-energy form, which
+    averages out the node polygon's ripple on the drums): drive work W = ½·M_eq·v² + R·x,
+    x the distance run. A 30 m conveyor with a belt 10 x stiffer than ST1250 (EA = 833 MN:
+    its wave crosses the 62 m loop in 14 ms, 1/140 of the 2 s Harrison start) on 1 m
+    drums (elements of 17°, a small ripple); R measured at steady running, from the design
+    state at speed (no start to ring down). M_eq from the scene alone: belt, rolls I/r²,
+    drums I/r². Tolerance 1 %: what a stiff belt still stores and rings with at the end of
+    the ramp; measured −0.3 % (2 s and 4 s ramps alike)."""
+    stiff = BeltClass("ST1250 x 10", strength=1.25e6, carcass_mass=9.74, carcass_thickness=0.0045,
+                      modulus=8.33e8, top_cover=0.006, bottom_cover=0.005, cord_diameter=0.0045)
+    ramp, v = 2.0, 2.0
+
+    def conveyor(start):
+        return Conveyor(profile=[(0, 0), (30, 0)], belt=stiff, speed=v, capacity=0.0, start=start,
+                        pulley_radius=1.0, takeup=TakeupSpec("tail", tension=20e3),
+                        drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=v, ramp=ramp),
+                                          power=50e3)])
+
+    quiet = dict(tension=False, node_position=False, node_velocity=False)
+    running = beltrs.Simulation(conveyor("running").scene())
+    running.run(1.0, record_interval=1.0, **quiet)
+    w0 = running.state()["drive_work"]
+    running.run(3.0, record_interval=1.0, **quiet)
+    resistance = (running.state()["drive_work"] - w0) / (v * 3.0)  # N
+    c = conveyor("rest")
+    scene = c.scene()
+    sim = beltrs.Simulation(scene)
+    sim.run(ramp, record_interval=ramp, **quiet)
+    work = sim.state()["drive_work"]  # J
+    distance = v * ramp / 2  # m: a Harrison ramp is symmetric
+    fitted = 2 * (work - resistance * distance) / v**2
+    belt = float(np.sum(sim.rest_length)) * c.belt_mass
+    rolls = sum(d.inertia / d.radius**2 for d in scene.idlers)
+    drums = sum((p.inertia + (p.drive.inertia if p.drive else 0.0)) / p.radius**2 for p in scene.pulleys)
+    m_eq = belt + rolls + drums
+    assert m_eq == pytest.approx(c.moving_mass(), rel=0.01)  # the builder's own CEMA M_eq
+    assert resistance == pytest.approx(c.statics().effective, rel=0.1)  # DIN's F_U (+5 %: the drum ripple)
+    assert fitted == pytest.approx(m_eq, rel=0.01)
+
+
+# --- takeup travel ------------------------------------------------------------------------
+def test_takeup_travel_of_a_loaded_start_is_half_the_elastic_stretch():
+    """During a loaded start the gravity takeup takes up what the belt stretches: its travel
+    is half the change of the belt's elastic length ∫ΔT/EA ds (two strands on the takeup
+    pulley), at every sample, through the takeup's bounce (an 8 t counterweight on a soft
+    EP belt: it overshoots to several times its steady travel).
+
+    100 m, EP630/4 (EA = 6.3 MN), 400 t/h at 2 m/s, a 40 kN takeup; from the design state at
+    rest, 0.5 s of settling (the spans sink into their sag) before a 2 s Harrison start,
+    both travel and stretch counted from there. Tolerance 5 % of the peak travel: the rest
+    is geometry, not elasticity: the spans' sag shortens as the tension rises (its share of
+    the length change, EA·q²·a²/(12·T³), is 0.9 % on the loaded carry at 40 kN; 7 % at
+    20 kN, which is why the takeup is heavy here) and the belt's transverse motion; measured
+    1.7 % at the peak and 2.3 % at worst over the samples beyond a fifth of the peak."""
+    settle, ramp, length = 0.5, 2.0, 100.0
+    c = Conveyor(profile=[(0, 0), (length, 0)], belt="EP630/4", capacity=400.0, speed=2.0,
+                 takeup=TakeupSpec("tail", tension=40e3),
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=ramp,
+                                                                          start=settle))])
+    scene = c.scene()
+    sim = beltrs.Simulation(scene)
+    res = sim.run(settle + ramp + 1.0, record_interval=0.02, tension=True, node_position=False,
+                  node_velocity=False)
+    ea = scene.belt.axial_stiffness
+    k0 = int(np.searchsorted(res.time, settle - 1e-9))
+    stretch = (res.tension - res.tension[k0]) @ sim.rest_length / ea  # m, change of elastic length
+    tail = scene.pulley_index("tail")
+    # along the pull, away from the conveyor: it takes up the stretch
+    travel = res.takeup_travel[:, tail] - res.takeup_travel[k0, tail]
+    peak = float(np.abs(travel).max())
+    k = int(np.argmax(np.abs(travel)))
+    assert travel[k] > 0.05  # m: a real stretch, far above the settling (0.3 mm)
+    assert travel[k] == pytest.approx(stretch[k] / 2, rel=0.05)
+    big = np.abs(travel) > 0.2 * peak
+    assert big.sum() > 20
+    assert np.max(np.abs(travel[big] - stretch[big] / 2)) < 0.05 * peak
+
+
+# --- bad input ------------------------------------------------------------------------------
+@pytest.mark.parametrize("initial, match", [
+    (dict(tension=()), r"initial.tension = \[\]: give at least one"),
+    (dict(tension=(-1.0,)), r"initial.tension\[0\] = -1: must be ≥ 0"),
+    (dict(tension=(1.0, 2.0)), r"initial.distance = \[\]: give a distance"),
+    (dict(tension=(1.0, 2.0), distance=(0.0,)), r"initial.distance = 1 values: needs as many"),
+    (dict(tension=(1.0, 2.0), distance=(3.0, 1.0)), r"initial.distance\[1\] = 1: must increase"),
+    (dict(tension=(1.0, 2.0), distance=(0.0, 99.0)), r"initial.distance\[1\] = 99: must be below the path length"),
+    (dict(tension=(5e5,)), r"initial.tension\[0\] = 500000: stretches the belt"),
+    (dict(tension=(1.0,), speed=math.nan), r"initial.speed = NaN: must be a finite"),
+    (dict(tension=(1.0,), path=((0.0, 0.5, 0.0), (4.0, 0.5, 0.0), (4.0, -0.5, 0.0))),
+     r"initial.path\[0\]\[2\] = 0: the path turns"),
+    (dict(tension=(1.0,), path=((0.0, 0.0, 0.1), (4.0, 0.0, 0.1))), r"initial.path\[0\].*more than 179°"),
+    (dict(tension=(1.0,), path=((-0.2, 1, 0.2), (5, 1, 0.2), (5, -1, 0.2), (-0.2, -1, 0.2))),
+     r"initial.path = .*the belt would start inside it"),
+    (dict(tension=(1.0,), path=((-1, 1, 5.0), (5, 1, 5.0), (5, -1, 5.0), (-1, -1, 5.0))),
+     r"initial.path\[1\]\[2\] = 5: the arcs at corners 0 and 1 need"),
+    (dict(tension=(1.0,), path=((0.0, 0.0, 1.0),)), r"initial.path = 1 corner: a closed path needs"),
+])
+def test_bad_initial_is_a_scene_error_on_every_path(initial, match, tmp_path):
+    scene = loop_scene(**initial)
+    with pytest.raises(beltrs.SceneError, match=match):
+        beltrs.Simulation(scene)
+    # the same scene as a dict and as a TOML file
+    with pytest.raises(beltrs.SceneError, match=match):
+        beltrs.Simulation(beltrs.Scene.from_dict(scene.to_dict()))
+    path = tmp_path / "s.toml"
+    scene.save(path)
+    with pytest.raises(beltrs.SceneError, match=match):
+        beltrs.Simulation(beltrs.load_scene(path))
+
+
+def test_initial_excludes_length_and_relaxation():
+    s = loop_scene(tension=(1e3,))
+    s.belt.length = 11.0
+    with pytest.raises(beltrs.SceneError, match=r"belt.length = 11: give belt.length or an \[initial\]"):
+        beltrs.Simulation(s)
+    s = loop_scene(tension=(1e3,))
+    s.recording.stabilise = True
+    with pytest.raises(beltrs.SceneError, match=r"recording.stabilise = true: must be false with an \[initial\]"):
+        beltrs.Simulation(s)
+    with pytest.raises(beltrs.SceneError, match=r"initial.tensoin = 'tensoin': unknown key, did you mean 'tension'"):
+        beltrs.Scene.from_dict({"initial": {"tensoin": [1.0]}})
+    with pytest.raises(beltrs.SceneError, match=r"initial.speed"):
+        beltrs.Scene.from_dict({"initial": {"tension": [1.0], "speed": "fast"}})
+
+
+def test_initial_round_trips_through_toml(tmp_path):
+    s = loop_scene(tension=(5e3, 15e3), distance=(0.0, 5.0), speed=-1.5)
+    path = tmp_path / "s.toml"
+    s.save(path)
+    back = beltrs.load_scene(path)
+    assert back == s and back.initial.speed == -1.5
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(start="moving"), r"start = 'moving': must be one of 'rest', 'running'"),
+])
+def test_builder_bad_start(kw, match):
+    with pytest.raises(beltrs.SceneError, match=match):
+        short(**kw).scene()
+    with pytest.raises(beltrs.SceneError, match=match):
+        beltrs.conveyor.loads('[conveyor]\nstart = "moving"\n')
+
+
+def test_design_start_helpers_bad_input():
+    p = short().statics()
+    with pytest.raises(beltrs.SceneError, match=r"profile = 3: expected a beltrs.statics.TensionProfile"):
+        design_start.tension_table(3, [design_start.Wrap("tail", 0.0, 1.0)], 10.0)
+    with pytest.raises(beltrs.SceneError, match=r"pieces\[0\] = 'x': expected a beltrs.design_start.Run or Wrap"):
+        design_start.tension_table(p, ["x"], 10.0)
+    with pytest.raises(beltrs.SceneError, match=r"pieces\[0\].end = 1.0: must exceed start"):
+        design_start.tension_table(p, [design_start.Run(2.0, 1.0, 0.0, 1.0)], 10.0)
+    with pytest.raises(beltrs.SceneError, match=r"path_length = -1: must be > 0"):
+        design_start.tension_table(p, [design_start.Run(0.0, 1.0, 0.0, 1.0)], -1)
+    with pytest.raises(beltrs.SceneError, match=r"label = 'pulley: in': no such place"):
+        design_start.tension_table(p, [design_start.Wrap("pulley", 0.0, 1.0)], 10.0)
+    with pytest.raises(beltrs.SceneError, match=r"speed = inf: must be finite"):
+        design_start.initial(p, [design_start.Run(0.0, 1.0, 0.0, 1.0)], 10.0, speed=math.inf)
+    with pytest.raises(beltrs.SceneError, match=r"start = 'x': must be None, 'rest' or 'running'"):
+        beltrs.scenes.guo_wang_conveyor(length=50.0, start="x")
