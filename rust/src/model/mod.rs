@@ -8,8 +8,8 @@
 //! in [`crate::state::State`].
 
 mod belt;
-mod design;
 mod belt_rigid;
+mod design;
 mod idlers;
 mod path;
 mod pulleys;

@@ -12,8 +12,8 @@ use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, InitialState, LoadSpec, PulleySpec,
-    RecordingParams, Scene, SolverParams, TakeupSpec,
+    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, InitialState,
+    LoadSpec, PulleySpec, RecordingParams, Scene, SolverParams, TakeupSpec,
 };
 use crate::start_curve::StartCurve;
 use pyo3::prelude::*;

@@ -6,8 +6,8 @@
 
 use super::read::rule;
 use super::{
-    BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, PulleyContact, Table, TakeupKind,
-    Wrap,
+    BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, PulleyContact, Table,
+    TakeupKind, Wrap,
 };
 use crate::drives::controller::SpeedController;
 use crate::drives::motor::Motor;

@@ -56,7 +56,9 @@ impl Scene {
     pub(super) fn validate_choices(&self) -> BeltResult<()> {
         for (i, p) in self.pulleys.iter().enumerate() {
             check_contact_law(&format!("pulleys[{i}]"), p)?;
-            if p.nonlinear_contact.is_some() && self.belt.pulley_contact == super::PulleyContact::Wrap {
+            if p.nonlinear_contact.is_some()
+                && self.belt.pulley_contact == super::PulleyContact::Wrap
+            {
                 return Err(BeltError::invalid(
                     "belt.pulley_contact",
                     "wrap",
@@ -64,7 +66,9 @@ impl Scene {
                 ));
             }
         }
-        if self.belt.formulation == Formulation::RigidBody && self.belt.pulley_contact == super::PulleyContact::Wrap {
+        if self.belt.formulation == Formulation::RigidBody
+            && self.belt.pulley_contact == super::PulleyContact::Wrap
+        {
             return Err(BeltError::invalid(
                 "belt.pulley_contact",
                 "wrap",
