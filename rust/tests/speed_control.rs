@@ -386,21 +386,21 @@ fn checkpoint_without_drive_memory_reads_as_zero_memory() {
     let mut a = Simulation::new(&scene).unwrap();
     a.step(100).unwrap();
     let bytes = checkpoint::encode(&a);
-    // Make it a version 4 file of that time: version 4 in the header, no formulation and
-    // integrator tags (two strings after the engine version), and the state ending after
-    // the load zones: drop the drives' memory (a count and three numbers per pulley), the
-    // brake ramps (a count and one number per pulley), the version 5 rigid-body and
-    // adaptive state (two empty arrays and three numbers for the node belt) and the
-    // friction memory (an empty array); then fix the payload length and the checksum.
+    // Make it a version 4 file of before the drives' memory: version 4 in the header, no
+    // formulation and integrator names (added in version 5) after the engine version, and
+    // the state ending after the load zones: drop the drives' memory (a count and three
+    // numbers per pulley), the brake ramps (a count and one number per pulley) and
+    // version 5's tail (two empty body arrays for the node belt, the adaptive step and two
+    // step counts, and the empty friction memory). Then fix the payload length and the
+    // checksum.
     let p = scene.pulleys.len();
-    let tail = 8 + 24 * p + 8 + 8 * p + (8 + 8 + 24) + 8;
-    let string_at =
-        |at: usize| 8 + u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
-    let tags_at = 24 + string_at(24);
-    let tags_end = tags_at + string_at(tags_at);
-    let tags_end = tags_end + string_at(tags_end);
+    let tail = (8 + 24 * p) + (8 + 8 * p) + 8 + 8 + 8 + 8 + 8 + 8;
+    let string_end =
+        |at: usize| at + 8 + u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    let engine_end = string_end(24);
+    let tags_end = string_end(string_end(engine_end));
     let end = bytes.len() - 4 - tail;
-    let mut old = bytes[..tags_at].to_vec();
+    let mut old = bytes[..engine_end].to_vec();
     old.extend_from_slice(&bytes[tags_end..end]);
     old[8..12].copy_from_slice(&4u32.to_le_bytes());
     let payload = (old.len() - 24) as u64;

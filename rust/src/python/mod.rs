@@ -1,5 +1,10 @@
 //! Python bindings: the only module that knows PyO3. Thin wrappers that convert arguments,
 //! call the core, and convert results and errors back. No panic crosses into Python.
+//!
+//! Over ~600 lines on purpose: PyO3 takes one `#[pymethods]` block per class (more need
+//! its `multiple-pymethods` feature and the `inventory` crate), and the Simulation class's
+//! block is most of this file; errors and Ctrl-C are in call.rs, module functions in
+//! functions.rs.
 
 mod call;
 mod functions;

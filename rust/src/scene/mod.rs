@@ -1,5 +1,10 @@
 //! Plain data describing a scene: belt, pulleys, idlers and solver settings.
 //!
+//! Over ~600 lines on purpose: this file is the scene format's top-level tables (belt,
+//! pulley, idler, drive, takeup, solver, recording), each with its defaults, in file order,
+//! so that the schema reads as a scene file does; the rules (validate.rs, rules.rs), the
+//! named choices (forms.rs) and the stops and design-state tables are already apart.
+//!
 //! Everything here is SI: metres, kilograms, seconds, newtons, radians. Each parameter
 //! struct implements [`Default`] with the documented defaults, so a scene can be built as
 //! `PulleySpec { radius: 0.5, ..Default::default() }`. Nothing here is checked until

@@ -1,3 +1,6 @@
+//! Over ~600 lines on purpose (by a few): one reader walks the whole tree, with its error
+//! wording and did-you-mean in one place, so every path reports alike.
+//!
 //! The strict reader of the scene schema: any tree of plain values (a Python dict, a parsed
 //! TOML file) becomes the serde types of [`super`], or an error naming the full path, the
 //! value and the rule, e.g. `pulleys[0].radious = 'radious': unknown key, did you mean
