@@ -166,15 +166,7 @@ impl BeltPath {
                 if k == i || k == j || p.contact_stiffness == 0.0 {
                     continue;
                 }
-                let c = Vector2::new(p.center[0], p.center[1]);
-                let ab = b - a;
-                let len2 = ab.norm_squared();
-                let t = if len2 > 0.0 {
-                    ((c - a).dot(&ab) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let dist = (a + ab * t - c).norm();
+                let dist = point_segment_distance(Vector2::new(p.center[0], p.center[1]), a, b);
                 if dist < p.radius * (1.0 - 1e-9) {
                     return Err(BeltError::invalid(
                         format!("pulleys[{k}].center"),
@@ -326,6 +318,18 @@ pub(crate) fn next_at_chord_on(point: impl Fn(f64) -> Vector2<f64>, s0: f64, cho
 
 /// Work units ([`crate::interrupt::check`]) of placing one node: about 10 path evaluations.
 const WORK_PER_NODE: u64 = 64;
+
+/// Distance, m, from point `c` to the segment from `a` to `b` (to `a` if they coincide).
+pub(crate) fn point_segment_distance(c: Vector2<f64>, a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((c - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - c).norm()
+}
 
 #[cfg(test)]
 mod tests {

@@ -125,15 +125,8 @@ pub(super) fn path(scene: &Scene) -> BeltResult<BeltPath> {
             if p.contact_stiffness == 0.0 {
                 continue;
             }
-            let c = V2::new(p.center[0], p.center[1]);
-            let ab = b - a;
-            let len2 = ab.norm_squared();
-            let t = if len2 > 0.0 {
-                ((c - a).dot(&ab) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let dist = (a + ab * t - c).norm();
+            let dist =
+                crate::geometry::point_segment_distance(V2::new(p.center[0], p.center[1]), a, b);
             if dist < p.radius * (1.0 - 1e-9) {
                 return Err(BeltError::invalid(
                     format!("pulleys[{j}].center"),
