@@ -398,7 +398,7 @@ def test_wrong_type_from_the_builder():
             ("belt", "formulation"),
             "absolute_nodal_coordinates",
             r'belt\.formulation = "absolute_nodal_coordinates": '
-            r'unknown belt formulation \(known: "node_kelvin_voigt"\)',
+            r'unknown belt formulation \(known: "node_kelvin_voigt", "rigid_body"\)',
         ),
         (
             ("pulleys", 0, "friction", "model"),

@@ -58,22 +58,23 @@ def test_run_prints_a_summary_and_names_the_output_after_the_scene(pulse_npz):
     peak = res.tension.max()
     assert f"peak tension    {peak / 1e3:10.2f} kN" in out
     assert "takeup 'takeup': travel" in out
-    torque = res.drive_torque[:, 0]
+    torque = res.driving_torque[:, 0]  # positive when driving (ccw wrap: the engine's sign)
     assert f"drive 'upper': peak torque {torque[np.argmax(np.abs(torque))] / 1e3:.3f} kN·m" in out
+    assert "capstan utilisation: peak" in out
     assert "peak power" in out and "wall time: relaxation" in out
     # The CLI's metadata travel with the result.
     assert res.metadata["stabilised"] is True and res.metadata["nodes"] == 89
     assert beltrs.Scene.from_toml(res.metadata["scene"]).pulleys[0].name == "upper"
 
 
-def test_plot_writes_the_four_figures(pulse_npz, tmp_path, capsys):
+def test_plot_writes_the_five_figures(pulse_npz, tmp_path, capsys):
     path, _ = pulse_npz
     assert main(["plot", str(path), "--out-dir", str(tmp_path)]) == 0
     names = sorted(p.name for p in tmp_path.iterdir())
-    assert names == [f"pulse_{n}.png" for n in ("drives", "envelope", "takeup", "waterfall")]
+    assert names == [f"pulse_{n}.png" for n in ("drives", "envelope", "slip", "takeup", "waterfall")]
     for p in tmp_path.iterdir():
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and p.stat().st_size > 10_000
-    assert capsys.readouterr().out.count("wrote") == 4
+    assert capsys.readouterr().out.count("wrote") == 5
 
 
 def test_export_csv_reads_back_exactly(pulse_npz, tmp_path):

@@ -162,23 +162,27 @@ def test_master_slave_shares_at_the_set_ratio():
     assert res.pulley_speed[-1, 0] * RADIUS == pytest.approx(2.0, rel=2e-3)
 
 
-def test_droop_shares_load_by_rated_torque():
+@pytest.mark.parametrize("axial_stiffness", [1e7, 1e6])
+def test_droop_shares_load_by_rated_torque(axial_stiffness):
     """Head and tail both speed-controlled with 5 % droop, rated torques 600 and 300 N*m:
-    in steady running T_k = (w_ref - w_k)/delta_k, so with equal speeds the head carries
-    twice the tail's torque. The belt's creep makes the drum speeds differ by about the
-    strain difference (dT/EA ~ 3e-4 here), which moves each share by about
-    creep/droop ~ 0.6 %: stated tolerance 3 % on the ratio."""
+    in steady running w_k = w_ref - delta_k*T_k, so with equal drum speeds the head carries
+    twice the tail's torque. The belt's creep makes the drums' speeds differ by the strain
+    difference, dF/EA with dF = T_head/r ~ 200 N, which shifts the split by about
+    2*(dF/EA)*w/(delta_h*T_h) (the head runs that much slower than the tail's belt): 0.12 %
+    at EA = 10 MN, 1.2 % at 1 MN. Stated: the ratio within twice that estimate (and 0.2 %)
+    of 2."""
     curve = StartCurve(shape="harrison", speed=2.0, ramp=2.0, start=0.1)
 
     def drive(rated):
         return Drive(start_curve=curve, controller=SpeedController(droop=0.05, rated_torque=rated))
 
-    scene = loop(drive(600.0), drive(300.0), tail_viscous=150.0, axial_stiffness=1e7)
+    scene = loop(drive(600.0), drive(300.0), tail_viscous=150.0, axial_stiffness=axial_stiffness)
     sim, res = relaxed_run(scene, 8.0, record_interval=0.01)
     steady = res.time > curve.end + 4.0
     th, tt = (np.mean(res.drive_torque[steady, k]) for k in (0, 1))
     assert th > 0 and tt > 0
-    assert th / tt == pytest.approx(2.0, rel=0.03)
+    creep = 2 * (th / RADIUS / axial_stiffness) * 2.0 / (0.05 * 2.0 / 600.0 * th)
+    assert abs(th / tt / 2.0 - 1.0) < 2 * creep + 0.002, (th / tt, creep)
     # Droop lowers the running speed by droop * w0 * T/rated on each drive.
     w = np.mean(res.pulley_speed[steady, 0])
     assert w == pytest.approx(2.0 * (1 - 0.05 * th / 600.0), rel=2e-3)
@@ -328,3 +332,43 @@ def test_builder_makes_pi_master_and_follower():
         conveyor.loads('[conveyor]\n[[conveyor.drives]]\n[conveyor.drives.controller]\nbandwith = 3.0\n')
     with pytest.raises(SceneError, match=r"drives\[0\]\.controller = 'pi': expected a beltrs\.SpeedController"):
         Conveyor(drives=[DriveSpec("head", controller="pi")]).scene()
+
+
+def test_builder_makes_dol_drives_with_flywheels():
+    from beltrs import conveyor
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    motor = Motor(rated_power=75e3, rated_speed=155.5, synchronous_speed=157.08, rotor_inertia=1.5,
+                  coupling=FluidCoupling())
+    c = Conveyor(profile=[(0, 0), (150, 0)], belt="ST1250", capacity=400.0, speed=2.0,
+                 drives=[DriveSpec("head", motor=motor, flywheel=3.0)])
+    scene = c.scene()
+    d = scene.pulleys[scene.pulley_index("head")].drive
+    r = scene.pulleys[scene.pulley_index("head")].radius
+    assert d.motor.gear_ratio == pytest.approx(155.5 * r / 2.0) and d.motor.rotation == "cw"
+    assert d.flywheel == 3.0 and d.start_curve is None
+    assert c.motor_power("head") == 75e3
+    assert "motors" in beltrs.compile(scene).stages
+    text = ('[conveyor]\nprofile = [[0.0, 0.0], [150.0, 0.0]]\nbelt = "ST1250"\ncapacity = 400.0\nspeed = 2.0\n'
+            '[[conveyor.drives]]\nlocation = "head"\nflywheel = 3.0\n[conveyor.drives.motor]\nrated_power = 75e3\n'
+            'rated_speed = 155.5\nsynchronous_speed = 157.08\nrotor_inertia = 1.5\n'
+            '[conveyor.drives.motor.coupling]\n')
+    assert conveyor.loads(text).scene().to_dict() == scene.to_dict()
+    with pytest.raises(SceneError, match=r"drives\[0\]\.motor: a motor started direct on line"):
+        Conveyor(drives=[DriveSpec("head", motor=motor, controller=SpeedController())]).scene()
+    with pytest.raises(SceneError, match=r"drives\[0\]\.flywheel"):
+        Conveyor(drives=[DriveSpec("head", flywheel=-1.0)]).scene()
+
+
+def test_motor_turning_the_belt_backwards_warns():
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    motor = Motor(rated_power=75e3, rated_speed=155.5, synchronous_speed=157.08, rotor_inertia=1.5)
+    c = Conveyor(profile=[(0, 0), (150, 0)], belt="ST1250", capacity=400.0, speed=2.0,
+                 drives=[DriveSpec("head", motor=motor)])
+    scene = c.scene()
+    beltrs.Simulation(scene)  # the builder's sense: no warning
+    head = scene.pulleys[scene.pulley_index("head")]
+    head.drive.motor.rotation = "ccw"
+    with pytest.warns(beltrs.DriveDirectionWarning, match=r"drive\.motor\.rotation = 'ccw': runs the belt backwards"):
+        beltrs.Simulation(scene)

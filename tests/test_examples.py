@@ -45,7 +45,8 @@ def test_every_example_loads_compiles_and_runs(path):
     [("case_h", lambda: scenes.hustrulid_loop(89)),
      ("case_h_torque_pulse", lambda: scenes.hustrulid_torque_pulse(89)),
      ("idler_conveyor", scenes.idler_conveyor),
-     ("case_g", scenes.guo_wang_conveyor)],
+     ("case_g", scenes.guo_wang_conveyor),
+     ("case_k", scenes.kubas_case_k)],
 )
 def test_example_equals_its_builder(name, builder):
     assert beltrs.load_scene(EXAMPLES / f"{name}.toml") == builder()

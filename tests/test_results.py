@@ -1,6 +1,7 @@
 """Results that travel: Result.save / beltrs.load_result (NPZ and netCDF), to_xarray,
 to_pandas; the default recording interval and the final instant at the end of the run."""
 
+import dataclasses
 import json
 import math
 import sys
@@ -52,6 +53,16 @@ def test_save_load_round_trip_is_lossless(tmp_path, pulse_result, suffix):
     # Equality is strict: one flipped bit is a difference.
     back.tension[3, 4] = np.nextafter(back.tension[3, 4], np.inf)
     assert back != pulse_result
+
+
+def test_equality_compares_the_data_not_how_the_run_went(tmp_path, pulse_result):
+    # A reloaded result does not carry the run's checkpoint error, and a rerun takes another
+    # wall time: neither is part of what the run computed.
+    run = dataclasses.replace(pulse_result, checkpoint_error=beltrs.CheckpointError("disk full"), wall_time=9.0)
+    back = beltrs.load_result(run.save(tmp_path / "r.npz"))
+    assert back.checkpoint_error is None and back == run
+    assert dataclasses.replace(back, dt=back.dt * 2) != run  # the data still count
+    assert dataclasses.replace(back, record_every=back.record_every + 1) != run
 
 
 def test_npz_is_plain_numpy_with_units(tmp_path, pulse_result):

@@ -178,7 +178,8 @@ CASE_H = hustrulid_loop().to_toml()
         ),
         (
             CASE_H.replace("[solver]", "[solver]\nxyzzy = 1"),
-            r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: time_step, time_step_fraction\)",
+            r"solver\.xyzzy = 'xyzzy': unknown key \(known keys here: absolute_tolerance, integrator, "
+            r"relative_tolerance, time_step, time_step_fraction\)",
         ),
         (
             CASE_H.replace("stabilise = true", "stabilize = true"),
@@ -411,6 +412,7 @@ def test_every_key_of_every_table_has_unit_default_and_rule_in_the_docs():
         "`[belt]`": ("belt", None),
         "`[[pulleys]]`": ("pulley", None),
         "`friction`": ("friction", None),
+        "`nonlinear_contact`": ("nonlinear_contact", None),
         "`takeup`": ("takeup", None),
         "`drive`": ("drive", None),
         "`start_curve`": ("start_curve", None),

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import beltrs
-from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, Pulley, Recording, Scene, SceneError,
-                    Solver, StartCurve, Takeup)
+from beltrs import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, NonlinearContact, Pulley, Recording,
+                    Scene, SceneError, Solver, StartCurve, Takeup)
 from beltrs._beltrs import scene_defaults
 from beltrs.scenes import hustrulid_loop
 
@@ -21,6 +21,7 @@ TABLES = {
     "belt": Belt,
     "pulley": Pulley,
     "friction": Friction,
+    "nonlinear_contact": NonlinearContact,
     "takeup": Takeup,
     "drive": Drive,
     "start_curve": StartCurve,
@@ -158,6 +159,19 @@ def test_a_dict_nested_5000_levels_is_a_scene_error():
         beltrs._beltrs.Simulation(deep)
 
 
+def test_a_list_where_a_table_belongs_is_a_scene_error():
+    # serde's derived structs also read a list of their fields in order, so `belt = []`
+    # compiled as the default belt and later failed as an AttributeError (the campaign's
+    # seed 5157); a table is written with its keys.
+    good = hustrulid_loop(16).to_dict()
+    for key, value in (("belt", []), ("solver", [0.5]), ("pulleys", [[], []])):
+        bad = dict(good, **{key: value})
+        with pytest.raises(SceneError, match=r"(belt|solver|pulleys\[0\]) = \[.*\]: expected a table"):
+            beltrs._beltrs.Simulation(bad)
+        with pytest.raises(SceneError, match=r"expected a table"):
+            beltrs.Simulation(Scene.from_dict(bad))
+
+
 def test_a_checkpoint_gives_back_every_table(tmp_path):
     scene = hustrulid_loop()
     scene.recording = Recording(duration=0.5, every=2, stabilise=False)
@@ -181,6 +195,6 @@ def test_a_checkpoint_of_an_older_format_is_refused_naming_its_version(tmp_path)
         data[8:12] = old.to_bytes(4, "little")
         path.write_bytes(bytes(data))
         with pytest.raises(
-            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 4 \(.*older"
+            beltrs.CheckpointError, match=rf"format version {old}; this build of beltrs reads versions 4 to 5 \(.*older"
         ):
             beltrs.Simulation.load_checkpoint(path)

@@ -5,7 +5,7 @@ penalty contact, stick-force friction, central differences) driven from Python. 
 everywhere.
 """
 
-from . import analysis, analytic, conveyor, design_start, scenes, statics, study
+from . import analysis, analytic, conveyor, design_start, plot, scenes, statics, study
 from ._checks import BeltrsWarning, UndampedContactWarning
 from ._beltrs import BeltrsError, CheckpointError, DivergenceError, SceneError, TimeStepError
 from ._beltrs import DEFAULT_CONTACT_DAMPING_RATIO, __version__
@@ -13,8 +13,10 @@ from .model import Model
 from .model import compile as compile  # not in __all__: a star import would shadow the builtin
 from .diagnostics import AccuracyWarning, DriveDirectionWarning, IdlerContactWarning, NotRelaxedWarning
 from .result import Result, load_result
-from .scene import (Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, Pulley, Recording, Scene, Solver,
-                    StartCurve, Takeup)
+from .scene import (
+    Belt, Brake, Drive, Friction, Holdback, Idler, Initial, Load, NonlinearContact, Pulley, Recording, Scene, Solver,
+    StartCurve, Takeup,
+)
 from .scene import FluidCoupling, Motor, SpeedController, TorqueFollow
 from .scene_file import load_scene
 from .simulation import CheckpointWarning, Simulation
@@ -39,6 +41,7 @@ __all__ = [
     "Initial",
     "Load",
     "Model",
+    "NonlinearContact",
     "Motor",
     "NotRelaxedWarning",
     "Pulley",
@@ -61,6 +64,7 @@ __all__ = [
     "design_start",
     "load_result",
     "load_scene",
+    "plot",
     "scenes",
     "statics",
     "study",

@@ -8,7 +8,7 @@
   netCDF; the output is named after the scene by default.
 - ``beltrs check SCENE.toml`` reads and compiles a scene file and prints what it compiled to.
 - ``beltrs plot result.npz`` writes PNGs: tension waterfall, tension envelope, takeup
-  travel, drive torque and power.
+  travel, drive torque and power, slip margin (``beltrs.plot``).
 - ``beltrs export result.npz --csv`` writes the time series as CSV files.
 
 User errors (a bad scene, a missing file, a bad argument) are one line on stderr and a
@@ -110,7 +110,15 @@ def _where(res: Any, k_time: int, element: int) -> str:
 def summary_lines(res: Any, names: Sequence[str], nodes: int) -> list[str]:
     """The summary ``beltrs run`` prints: peak and lowest tension (where and when),
     takeup travel, drive torque and power, and wall time."""
+    import beltrs
+
     lines = [f"summary: t = {res.time[0]:.4g} to {res.time[-1]:.4g} s, {len(res)} samples"]
+    try:
+        speed = res.belt_speed
+        lines.append(f"  belt speed      {speed[0]:.3f} m/s at the start, {speed[-1]:.3f} m/s at the end "
+                     f"(mean along the direction of travel)")
+    except beltrs.BeltrsError:  # node velocities not recorded
+        pass
     if res.tension is not None and res.tension.size:
         t = res.tension
         k = np.unravel_index(int(np.argmax(t)), t.shape)
@@ -120,19 +128,43 @@ def summary_lines(res: Any, names: Sequence[str], nodes: int) -> list[str]:
                      + ("  (compression)" if t[lo] < 0 else ""))
     for j, name in enumerate(names):
         travel = res.takeup_travel[:, j]
-        if np.any(travel != 0):
-            lines.append(f"  takeup {name!r}: travel {travel.min():.4f} to {travel.max():.4f} m "
-                         f"(start {travel[0]:.4f}, end {travel[-1]:.4f} m; + towards the counterweight)")
-    power = res.drive_power
+        if np.any(travel != travel[0]):
+            moved = travel - travel[0]
+            lines.append(f"  takeup {name!r}: travel since the start {moved.min() * 1e3:.1f} to "
+                         f"{moved.max() * 1e3:.1f} mm, end {moved[-1] * 1e3:.1f} mm (+ towards the counterweight)")
+    signed = _engineering(res)
+    power = res.drive_power_kw
     for j, name in enumerate(names):
-        torque = res.drive_torque[:, j]
+        torque = res.drive_torque[:, j] if signed is None else signed[0][:, j]
         if np.any(torque != 0):
             kt = int(np.argmax(np.abs(torque)))
             kp = int(np.argmax(np.abs(power[:, j])))
-            lines.append(f"  drive {name!r}: peak torque {torque[kt] / 1e3:.3f} kN·m at t = {res.time[kt]:.3f} s, "
-                         f"peak power {power[kp, j] / 1e3:.2f} kW at t = {res.time[kp]:.3f} s, "
-                         f"end {torque[-1] / 1e3:.3f} kN·m / {power[-1, j] / 1e3:.2f} kW")
+            unit = "kN·m" if signed is not None else "kN·m counter-clockwise"
+            lines.append(f"  drive {name!r}: peak torque {torque[kt] / 1e3:.3f} {unit} at t = {res.time[kt]:.3f} s, "
+                         f"peak power {power[kp, j]:.2f} kW at t = {res.time[kp]:.3f} s, "
+                         f"end {torque[-1] / 1e3:.3f} {unit} / {power[-1, j]:.2f} kW (+ when driving)")
+            util = None if signed is None or signed[1] is None else signed[1][:, j]
+            if util is not None and np.any(np.isfinite(util)):
+                ku = int(np.argmax(np.where(np.isnan(util), -np.inf, util)))
+                lines.append(f"    capstan utilisation: peak {util[ku]:.2f} at t = {res.time[ku]:.3f} s "
+                             f"(1 = slip limit T1/T2 = e^(µs·θ))")
     return lines
+
+
+def _engineering(res: Any) -> Optional[tuple[np.ndarray, Optional[np.ndarray]]]:
+    """Drive torque positive when driving, and the capstan utilisation (None where the
+    result lacks what they need: an older file without the pulley constants, no tension)."""
+    import beltrs
+
+    try:
+        torque = res.driving_torque
+    except beltrs.BeltrsError:
+        return None
+    try:
+        util = res.capstan().utilisation
+    except beltrs.BeltrsError:
+        util = None
+    return torque, util
 
 
 def default_output(scene_path: str, suffix: str = ".npz") -> Path:
@@ -275,17 +307,17 @@ def _out_dir(result_path: str, out_dir: Optional[str]) -> Path:
     return directory
 
 
-def plot_command(result_path: str, out_dir: Optional[str] = None) -> int:
+def plot_command(result_path: str, out_dir: Optional[str] = None, cutoff: Optional[float] = None) -> int:
     """``beltrs plot``: the figures of :func:`beltrs.plot.plot_result`, beside the result
-    file (or in ``out_dir``)."""
+    file (or in ``out_dir``); ``cutoff`` (Hz) adds low-passed series."""
     from beltrs.plot import plot_result
 
     res = _load(result_path)
-    paths = plot_result(res, _out_dir(result_path, out_dir), Path(result_path).stem)
+    paths = plot_result(res, _out_dir(result_path, out_dir), Path(result_path).stem, cutoff=cutoff)
     for path in paths:
         print(f"wrote {path}")
     if not paths:
-        print("nothing to plot: no tension, takeup or drive was recorded", file=sys.stderr)
+        print("nothing to plot: no tension, takeup, drive or friction was recorded", file=sys.stderr)
     return EXIT_OK
 
 
@@ -382,6 +414,16 @@ def _duration(text: str) -> float:
     return value
 
 
+def _frequency(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a frequency, Hz") from None
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite frequency > 0 (Hz)")
+    return value
+
+
 def _elements(text: str) -> int:
     try:
         value = int(text)
@@ -436,13 +478,18 @@ def parser() -> argparse.ArgumentParser:
     )
     c.add_argument("scene", help="TOML scene file")
     pl = sub.add_parser(
-        "plot", help="draw a result: tension waterfall and envelope, takeup travel, drives",
+        "plot", help="draw a result: tension waterfall and envelope, takeup travel, drives, slip margin",
         description="Write PNGs of a result saved by 'beltrs run' or Result.save: RESULT_waterfall.png "
         "(tension over distance along the belt and time), RESULT_envelope.png (max/min tension along the "
-        "belt), RESULT_takeup.png (takeup travel), RESULT_drives.png (drive torque and power).",
+        "belt), RESULT_takeup.png (takeup travel since the start), RESULT_drives.png (drive torque and power, "
+        "positive when driving), RESULT_slip.png (capstan utilisation of driven and braked pulleys). A "
+        "figure whose data the result lacks is skipped.",
     )
     pl.add_argument("result", help="result file (.npz or .nc)")
     pl.add_argument("--out-dir", default=None, help="directory for the PNGs (default: beside the result)")
+    pl.add_argument("--cutoff", type=_frequency, default=None, metavar="HZ",
+                    help="also draw torque, power and slip margin low-passed below HZ, and the waterfall and "
+                    "envelope from tensions low-passed below HZ (the band is named on the figure); default: raw only")
     ex = sub.add_parser(
         "export", help="export a result as CSV files",
         description="Write a result's time series as CSV: RESULT_pulleys.csv (every per-pulley series, unit "
@@ -466,7 +513,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if args.command == "check":
         return _guarded(lambda: check_scene(args.scene))
     if args.command == "plot":
-        return _guarded(lambda: plot_command(args.result, args.out_dir))
+        return _guarded(lambda: plot_command(args.result, args.out_dir, args.cutoff))
     if args.command == "export":
         return _guarded(lambda: export_command(args.result, args.out_dir))
     return EXIT_BAD_INPUT

@@ -69,45 +69,6 @@ class _TqdmBar:
         self.bar.close()
 
 
-class _Ticker:
-    """While a single long call runs (with the GIL released), redraw one line on stderr
-    every half second with the elapsed wall time."""
-
-    def __init__(self, label: str, stream: TextIO) -> None:
-        import threading
-
-        self.label = label
-        self.stream = stream
-        self.start = time.perf_counter()
-        self.done = threading.Event()
-        self.thread = threading.Thread(target=self._run, daemon=True)
-        self.thread.start()
-
-    def _run(self) -> None:
-        while not self.done.wait(0.5):
-            self.stream.write(f"\r{self.label} ... {time.perf_counter() - self.start:.1f} s ")
-            self.stream.flush()
-
-    def close(self, summary: str = "") -> None:
-        self.done.set()
-        self.thread.join()
-        self.stream.write(f"\r{self.label}: {summary} ({time.perf_counter() - self.start:.2f} s)\n")
-        self.stream.flush()
-
-
-class _NoTicker:
-    def close(self, summary: str = "") -> None:
-        pass
-
-
-def make_ticker(progress: Optional[bool], label: str) -> Any:
-    """A ticker for one long call: ``progress`` True/False forces it on/off; None shows it
-    only when stderr is a terminal."""
-    if progress is None:
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    return _Ticker(label, sys.stderr) if progress else _NoTicker()
-
-
 def make_bar(progress: Optional[bool], total: int, t_end: float) -> Any:
     """The bar to use: ``progress`` True/False forces it on/off; None shows it only when
     stderr is a terminal. tqdm is used if it can be imported."""

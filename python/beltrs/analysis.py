@@ -71,11 +71,13 @@ def low_pass(signal: np.ndarray, interval: float, cutoff: float) -> np.ndarray:
     ``cutoff`` (Hz) are removed; ``interval`` is the sample spacing, s. The signal is
     mirrored at both ends before the transform so that its ends do not ring.
 
-    Used to read start-up tensions without the node model's chordal ripple: a belt of
-    straight elements running onto a pulley moves at a speed that varies by
-    1 − cos(θ/2) (θ the element's angle on the pulley) at the node-passing frequency v/l,
-    a discretisation artefact that fades as the elements shrink (docs/case-g.md,
-    docs/accuracy.md)."""
+    A measurement band chosen on purpose (e.g. a load cell's 2 Hz), or, with nodal pulley
+    contact (``belt.pulley_contact = "nodes"``, the default), a way to read start-up
+    tensions without its chordal ripple: a belt of straight elements running onto a pulley
+    moves at a speed that varies by 1 − cos(θ/2) (θ the element's angle on the pulley) at
+    the node-passing frequency v/l, a discretisation artefact that fades as the elements
+    shrink and that wrap contact (``"wrap"``) removes (docs/wrap-contact.md). For recorded
+    channels, :meth:`beltrs.Result.lowpass` names its cut-off."""
     x = np.asarray(signal, dtype=float)
     if not (interval > 0 and cutoff > 0):
         raise ValueError(f"low_pass: interval = {interval!r} and cutoff = {cutoff!r}: both must be > 0")

@@ -38,7 +38,7 @@ from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
 from .design_start import START_KINDS
-from .scene import (Belt, Brake, Drive, Friction, Holdback, Initial, Load, Pulley, Recording, Scene, Solver,
+from .scene import (Belt, Brake, Drive, Friction, Holdback, Initial, Load, Motor, Pulley, Recording, Scene, Solver,
                     SpeedController, StartCurve, Takeup, TorqueFollow)
 from .statics import check
 
@@ -216,6 +216,12 @@ class DriveSpec:
             sharing, :class:`beltrs.TorqueFollow`): it applies share / master's share of
             the master's torque (the drums have one radius). The master needs a
             ``controller``; a follower has no ``start_curve``. Default None.
+        motor: an induction motor started direct on line (:class:`beltrs.Motor`) instead
+            of speed control: the builder sets its ``gear_ratio`` (the belt at ``speed``
+            at the motor's rated speed) and ``rotation`` (the drum's clockwise sense);
+            ``power`` is then its rated power. Default None.
+        flywheel: flywheel on the drive's high-speed shaft, kg*m^2, >= 0 (at the motor's
+            rated speed ``motor_speed``, or the ``motor``'s). Default 0.
     """
 
     location: str = "head"
@@ -227,6 +233,8 @@ class DriveSpec:
     motor_speed: float = 1500.0 * 2 * math.pi / 60
     controller: Optional[SpeedController] = None
     follow: Optional[str] = None
+    motor: Optional[Motor] = None
+    flywheel: float = 0.0
 
     def validate(self, where: str) -> None:
         if self.location not in LOCATIONS:
@@ -241,6 +249,13 @@ class DriveSpec:
             raise SceneError(f"{where}.start_curve = {self.start_curve!r}: expected a beltrs.StartCurve")
         if self.controller is not None and not isinstance(self.controller, SpeedController):
             raise SceneError(f"{where}.controller = {self.controller!r}: expected a beltrs.SpeedController")
+        check(f"{where}.flywheel", self.flywheel, unit="kg*m^2")
+        if self.motor is not None:
+            if not isinstance(self.motor, Motor):
+                raise SceneError(f"{where}.motor = {self.motor!r}: expected a beltrs.Motor")
+            if self.start_curve is not None or self.controller is not None or self.follow is not None:
+                raise SceneError(f"{where}.motor: a motor started direct on line runs on its own curve; "
+                                 "leave start_curve, controller and follow out")
         if self.follow is not None:
             if self.follow not in LOCATIONS or self.follow == self.location:
                 raise SceneError(f"{where}.follow = {self.follow!r}: must be the location of another drive "
@@ -877,21 +892,30 @@ class Conveyor:
         return replace(curve, speed=-curve.speed, creep_speed=creep)
 
     def _drive(self, d: DriveSpec, p: statics.TensionProfile, r: float) -> Drive:
+        if d.motor is not None:
+            speed = d.motor.rated_speed
+            if speed is None or not speed > 0:
+                raise SceneError(f"motor.rated_speed = {speed!r}: give the motor's rated speed, rad/s, > 0")
+            ratio = speed / (self.speed / r)
+            motor = replace(d.motor, gear_ratio=ratio, rotation="cw")
+            return Drive(motor=motor, inertia=d.inertia * ratio**2, flywheel=d.flywheel)
         power = self.motor_power(d.location)
         ratio = d.motor_speed / (self.speed / r)
         rated = power / d.motor_speed * ratio  # N*m at the drum
         if d.follow is not None:
             master = next(m for m in self.drives if m.location == d.follow)
             return Drive(follow=TorqueFollow(master=d.follow, ratio=d.share / master.share),
-                         max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2)
-        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=d.inertia * ratio**2,
-                     controller=d.controller)
+                         max_torque=d.torque_limit * rated, inertia=(d.inertia + d.flywheel) * ratio**2)
+        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated,
+                     inertia=(d.inertia + d.flywheel) * ratio**2, controller=d.controller)
 
     def motor_power(self, location: str = "head") -> float:
         """Rated power of the drive at ``location``, W (given, or chosen as
         :class:`DriveSpec` says)."""
         for d in self.drives:
             if d.location == location:
+                if d.motor is not None and d.motor.rated_power is not None:
+                    return float(d.motor.rated_power)
                 if d.power is not None:
                     return float(d.power)
                 running = d.share * self._running_force()
@@ -913,8 +937,25 @@ class Conveyor:
         rolls = 0.8 * (self.carry.rotating_mass * prof.length / self.carry.pitch
                        + self.returns.rotating_mass * prof.length / self.returns.pitch)
         drums = 2 * 0.8 * self._drum_mass()
-        motors = sum(d.inertia * (d.motor_speed / self.speed) ** 2 for d in self.drives)  # I ratio^2 / r^2
+        motors = sum(self._shaft_inertia(d) * (self._shaft_speed(d) / self.speed) ** 2
+                     for d in self.drives)  # I ratio^2 / r^2
         return belt + material + rolls + drums + motors
+
+    @staticmethod
+    def _shaft_speed(d: DriveSpec) -> float:
+        """Rated speed of the drive's high-speed shaft, rad/s."""
+        if d.motor is not None and d.motor.rated_speed is not None:
+            return float(d.motor.rated_speed)
+        return float(d.motor_speed)
+
+    @staticmethod
+    def _shaft_inertia(d: DriveSpec) -> float:
+        """Inertia on the drive's high-speed shaft that turns with the belt, kg*m^2: motor
+        and coupling (``inertia``), flywheel, and a rigidly geared DOL motor's rotor."""
+        rotor = 0.0
+        if d.motor is not None and d.motor.coupling is None:
+            rotor = float(d.motor.rotor_inertia)
+        return float(d.inertia) + float(d.flywheel) + rotor
 
     def start_force(self) -> float:
         """Peak drive force of a rigid-belt start along the drives' curves, N:
@@ -1028,6 +1069,8 @@ def _read(table: Any) -> Conveyor:
 
             if "start_curve" in dk:
                 dk["start_curve"] = _read_dataclass(StartCurve, dk["start_curve"], f"conveyor.drives[{i}].start_curve")
+            if "motor" in dk:
+                dk["motor"] = _read_dataclass(Motor, dk["motor"], f"conveyor.drives[{i}].motor")
             if "controller" in dk:
                 where = f"conveyor.drives[{i}].controller"
                 dk["controller"] = _read_dataclass(SpeedController, dk["controller"], where)

@@ -139,7 +139,8 @@ def _belt_direction(sim: "Simulation") -> Iterator[tuple[int, int]]:
 
 def check_drive_directions(sim: "Simulation") -> None:
     """Warn (:class:`DriveDirectionWarning`) for each speed-controlled drive whose starting
-    curve turns its pulley so that the belt moves against its path direction: the
+    curve (or DOL motor whose rotation) turns its pulley so that the belt moves against its
+    path direction: the
     direction in which the scene's loads carry material from loading to discharge point.
     Scenes without loads have no path direction and are not checked."""
     if not sim.scene.loads:
@@ -149,6 +150,19 @@ def check_drive_directions(sim: "Simulation") -> None:
         return  # no loads compiled (zero mass), or loads disagree: no single path direction
     along = next(iter(directions.values()))
     for j, p in enumerate(sim.scene.pulleys):
+        motor = None if p.drive is None else p.drive.motor
+        if motor is not None:
+            wrap = 1 if p.wrap == "ccw" else -1
+            wanted = along * wrap
+            if (1 if motor.rotation == "ccw" else -1) != wanted:
+                _warn(
+                    DriveDirectionWarning,
+                    f"pulleys[{j}].drive.motor.rotation = {motor.rotation!r}: runs the belt backwards. The "
+                    f"loads carry material {'in' if along > 0 else 'against'} node order, and the belt wraps "
+                    f"pulley {p.name!r} {p.wrap}: give rotation {'ccw' if wanted > 0 else 'cw'!r} "
+                    "(docs/drives.md).",
+                )
+            continue
         curve = None if p.drive is None else p.drive.start_curve
         if curve is None or not curve.speed:
             continue
@@ -174,7 +188,8 @@ def _distance_to_path(points: np.ndarray, path: np.ndarray) -> np.ndarray:
     len2 = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300)
     out = np.empty(len(points))
     for k, p in enumerate(points):
-        t = np.clip(np.einsum("ij,ij->i", p - a, ab) / len2, 0.0, 1.0)
+        with np.errstate(over="ignore"):  # a very short element far from p: t clips to 0 or 1
+            t = np.clip(np.einsum("ij,ij->i", p - a, ab) / len2, 0.0, 1.0)
         nearest = a + t[:, None] * ab
         out[k] = float(np.min(np.hypot(*(p - nearest).T)))
     return out
@@ -202,7 +217,8 @@ def check_idlers(sim: "Simulation") -> None:
     b = np.concatenate([path[(tracked + d + 1) % n] for d in (-1, 0, 1)])
     p = np.tile(centres, (3, 1))
     ab = b - a
-    t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
+    with np.errstate(over="ignore"):  # a very short element far from p: t clips to 0 or 1
+        t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
     near = np.hypot(*(p - (a + t[:, None] * ab)).T).reshape(3, -1).min(axis=0)
     gap = near - radii
     candidates = np.flatnonzero(gap > IDLER_GAP_LIMIT)
@@ -237,6 +253,8 @@ def check_defaults(sim: "Simulation") -> None:
     belt = sim.scene.belt
     if belt.elements is not None or belt.max_element_angle != Belt.max_element_angle:
         return
+    if belt.pulley_contact == "wrap":  # no chord polygon on the pulleys: no chordal ripple
+        return
     drives = [
         j for j, p in enumerate(sim.scene.pulleys)
         if p.drive is not None and p.drive.start_curve is not None and p.drive.start_curve.speed
@@ -251,7 +269,8 @@ def check_defaults(sim: "Simulation") -> None:
         f"peaks then carry a chordal ripple at the node-passing frequency (case G: 20 % above the low-passed "
         f"peak at 30 degrees, docs/accuracy.md). Read peaks through beltrs.analysis.low_pass, or set "
         f"belt.max_element_angle = {RIPPLE_FREE_ANGLE:.3f} (7 degrees: raw peaks within about 5 %) or "
-        f"belt.elements explicitly.",
+        f"belt.elements explicitly, or use belt.pulley_contact = \"wrap\" (raw peaks within 3 %, "
+        f"docs/wrap-contact.md).",
     )
 
 

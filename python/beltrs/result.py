@@ -21,7 +21,7 @@ import numpy as np
 
 from . import _beltrs
 
-__all__ = ["FORMAT", "UNITS", "DIMS", "Result", "load_result"]
+__all__ = ["FORMAT", "UNITS", "DIMS", "Capstan", "Result", "load_result"]
 
 #: Format tag written into every saved result (NPZ key / netCDF attribute ``beltrs_format``).
 FORMAT = "beltrs-result/1"
@@ -109,9 +109,18 @@ PULLEY_SERIES = (
     "slipping_nodes",
 )
 #: Scalar attributes of a Result and their types, saved beside the arrays.
-_SCALARS = {"dt": float, "wall_time": float, "interrupted": bool, "record_every": int}
+_SCALARS = {
+    "dt": float,
+    "wall_time": float,
+    "interrupted": bool,
+    "record_every": int,
+    "steps_accepted": int,
+    "steps_rejected": int,
+}
 _LISTS = ("energy_columns", "stages", "pulley_names")
 _DESCRIPTORS = ("beltrs_format", "units", "dims", "metadata_types")
+#: Fields that ``Result.__eq__`` leaves out: how the run went, not what it computed.
+_NOT_COMPARED = ("wall_time", "checkpoint_error")
 
 
 def _require(module: str, what: str) -> Any:
@@ -172,6 +181,9 @@ class Result:
             int, float, lists of str, or NumPy arrays. Default empty.
         checkpoint_error: the last :class:`beltrs.CheckpointError` of a periodic or final
             checkpoint that could not be written (the run went on), else None.
+        steps_accepted, steps_rejected: steps the adaptive integrator
+            (``Solver(integrator="rkf45")``) accepted and rejected during the run (each
+            rejected step was retried smaller); 0 with central differences.
     """
 
     time: np.ndarray
@@ -201,6 +213,8 @@ class Result:
     record_every: int = 1
     metadata: dict[str, Any] = field(default_factory=dict)
     checkpoint_error: Optional[BaseException] = None
+    steps_accepted: int = 0
+    steps_rejected: int = 0
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":
@@ -232,6 +246,243 @@ class Result:
         pulley_speed`` (positive when the drive drives, negative when it holds back)."""
         return self.drive_torque * self.pulley_speed
 
+    # --- engineering views: signs along the belt's direction of travel ------------------
+    # The engine's pulley quantities are counter-clockwise positive. These views turn them
+    # into what a conveyor engineer reads: speeds along the belt's direction of travel,
+    # drive torque positive when it drives the belt that way, power in kW positive when the
+    # drive delivers it, takeup travel from the start of the run, and the capstan
+    # utilisation of each pulley. Each is computed from the recorded arrays and constants
+    # that every Result of Simulation.run carries in its metadata: ``pulley_radius`` (m),
+    # ``pulley_wrap_sign`` (+1 where the belt wraps counter-clockwise in node order, -1
+    # clockwise), ``pulley_friction_static`` (mu_s, 0 without friction) and
+    # ``travel_direction`` (+1: the belt travels in node order, -1: against it, 0: not
+    # known from the scene, then taken from the run).
+
+    def _pulley_constant(self, key: str, what: str) -> np.ndarray:
+        value = self.metadata.get(key)
+        if value is None:
+            raise _beltrs.BeltrsError(
+                f"{what}: this Result has no metadata[{key!r}] (a result saved by an older beltrs, or "
+                f"built by hand); run the scene again, or set metadata[{key!r}] to one value per pulley"
+            )
+        value = np.asarray(value, dtype=float)
+        if value.shape != (self.pulley_speed.shape[1],):
+            raise _beltrs.BeltrsError(
+                f"{what}: metadata[{key!r}] has shape {value.shape}, expected one value per pulley "
+                f"({self.pulley_speed.shape[1]})"
+            )
+        return value
+
+    def _node_order_speed(self) -> Optional[np.ndarray]:
+        """``[n]`` mean belt speed in node order, m/s (None without node velocities)."""
+        if self.node_position is None or self.node_velocity is None:
+            return None
+        x, v = self.node_position, self.node_velocity
+        chord = np.roll(x, -1, axis=1) - x
+        length = np.linalg.norm(chord, axis=2)
+        along = np.einsum("tek,tek->te", 0.5 * (v + np.roll(v, -1, axis=1)), chord) / np.where(length > 0, length, 1)
+        rest = self.metadata.get("rest_length")
+        weight = np.asarray(rest, dtype=float) if rest is not None and np.shape(rest) == (x.shape[1],) else length
+        return (along * weight).sum(axis=-1) / weight.sum(axis=-1)
+
+    @property
+    def travel_direction(self) -> int:
+        """+1 if the belt's direction of travel is node order, -1 if against it.
+
+        From the scene when it says (``metadata["travel_direction"]``, set by
+        :meth:`beltrs.Simulation.run`: the direction the loads carry material, loading
+        point to discharge point, else the direction the speed-controlled drives' starting
+        curves run the belt); otherwise the direction the belt ran fastest in this run (its
+        mean speed in node order, or the pulleys' surface speeds without node velocities);
+        +1 if it never moved."""
+        given = self.metadata.get("travel_direction")
+        if given in (1, -1):
+            return int(given)
+        speed = self._node_order_speed()
+        if speed is None:
+            wrap = self._pulley_constant("pulley_wrap_sign", "travel_direction")
+            radius = self._pulley_constant("pulley_radius", "travel_direction")
+            surface = self.pulley_speed * (wrap * radius)
+            speed = surface.ravel()
+        if speed.size == 0 or not np.any(speed != 0):
+            return 1
+        return 1 if speed.ravel()[int(np.argmax(np.abs(speed.ravel())))] > 0 else -1
+
+    def _travel_sign(self, what: str) -> np.ndarray:
+        """``[P]`` the sign that turns a counter-clockwise-positive pulley quantity into one
+        along the belt's direction of travel."""
+        return self._pulley_constant("pulley_wrap_sign", what) * self.travel_direction
+
+    @property
+    def surface_speed(self) -> np.ndarray:
+        """``[n, P]`` surface speed of each pulley along the belt's direction of travel, m/s
+        (counter-clockwise ``pulley_speed`` times radius, signed by the wrap and
+        :attr:`travel_direction`). At a drive it is the belt speed there (plus creep,
+        docs/belt-drives.md)."""
+        return self.pulley_speed * (self._travel_sign("surface_speed") * self._pulley_constant(
+            "pulley_radius", "surface_speed"))
+
+    @property
+    def belt_speed(self) -> np.ndarray:
+        """``[n]`` mean speed of the belt along its direction of travel, m/s: each element's
+        mean node velocity projected on the element, averaged over the belt weighted by the
+        rest lengths. Needs ``node_position`` and ``node_velocity``.
+
+        Raises:
+            beltrs.BeltrsError: node positions or velocities were not recorded.
+        """
+        speed = self._node_order_speed()
+        if speed is None:
+            raise _beltrs.BeltrsError(
+                "belt_speed: needs node_position and node_velocity (recorded by default; use "
+                "surface_speed for the speed at each pulley)"
+            )
+        return speed * self.travel_direction
+
+    @property
+    def driving_torque(self) -> np.ndarray:
+        """``[n, P]`` drive torque, N*m, positive when it drives the belt along its direction
+        of travel (negative when it holds the belt back, e.g. regenerating on a decline)."""
+        return self.drive_torque * self._travel_sign("driving_torque")
+
+    @property
+    def drive_power_kw(self) -> np.ndarray:
+        """``[n, P]`` drive power, kW, positive when the drive delivers power (drives),
+        negative when it absorbs it (regenerates): ``drive_torque * pulley_speed / 1000``."""
+        return self.drive_power / 1e3
+
+    @property
+    def takeup_travel_from_start(self) -> np.ndarray:
+        """``[n, P]`` takeup travel since the start of the run (the first recorded instant),
+        m, positive towards the counterweight (``takeup_travel`` counts from the scene's
+        initial centre, so after ``stabilise()`` it does not start at 0)."""
+        return self.takeup_travel - self.takeup_travel[:1]
+
+    def capstan(self, friction: Optional[Union[float, np.ndarray]] = None) -> "Capstan":
+        """The capstan (Euler–Eytelwein) state of every pulley at every recorded instant.
+
+        At each instant and pulley, the belt's contact arc is the longest run of nodes inside
+        the pulley (closer to its centre than its radius, as the contact force counts them;
+        a single node off the surface inside an arc does not split it). The strand tensions
+        are those of the free elements next to the arc's ends, ``tight`` the larger,
+        ``slack`` the smaller, and the wrap angle ``wrap`` the turn from the incoming to the
+        outgoing strand's direction. Then
+
+            utilisation = (tight - slack) / (slack * (exp(mu * wrap) - 1)),
+
+        the friction the pulley needs, T1 - T2, over the most the arc can transmit with that
+        slack side, T2·(e^{µθ} - 1). Below 1 the belt grips; 1 is the Euler–Eytelwein limit
+        T1/T2 = e^{µθ}, where gross slip starts (an elastic belt creeps before: slip starts
+        between the kinetic and the static limit, docs/stability.md). The margin against
+        slip is 1 - utilisation (or the safety factor 1/utilisation).
+
+        Args:
+            friction: the coefficient µ, one for all pulleys or one per pulley. Default
+                None: each pulley's static coefficient ``metadata["pulley_friction_static"]``
+                (µs at the end of the run); pass the kinetic one to check a sliding belt.
+
+        Returns:
+            a :class:`Capstan` of ``[n, P]`` arrays. NaN where a pulley has no contact arc,
+            no friction, or no tension recorded; ``utilisation`` is inf where the slack side
+            is not in tension (no capstan capacity) but the tight side is.
+
+        Raises:
+            beltrs.BeltrsError: tension or node positions were not recorded, or the
+                metadata lacks the pulley constants.
+        """
+        if self.tension is None or self.node_position is None:
+            raise _beltrs.BeltrsError("capstan: needs the tension and node_position channels (recorded by default)")
+        radius = self._pulley_constant("pulley_radius", "capstan")
+        sign = self._pulley_constant("pulley_wrap_sign", "capstan")
+        count = len(radius)
+        if friction is None:
+            mu = self._pulley_constant("pulley_friction_static", "capstan")
+        else:
+            try:
+                mu = np.broadcast_to(np.asarray(friction, dtype=float), (count,)).copy()
+            except (TypeError, ValueError):
+                raise _beltrs.BeltrsError(
+                    f"friction = {friction!r}: must be a number or one number per pulley ({count})"
+                ) from None
+            if not np.all(np.isfinite(mu) & (mu >= 0)):
+                raise _beltrs.BeltrsError(f"friction = {friction!r}: must be finite and ≥ 0")
+        n, elements = self.tension.shape
+        tight, slack, wrap = (np.full((n, count), np.nan) for _ in range(3))
+        x = self.node_position
+        for j in range(count):
+            for k in range(n):  # one instant at a time: [n, E] temporaries would not fit a long run
+                arc = _longest_arc(np.hypot(*(x[k] - self.pulley_position[k, j]).T) < radius[j])
+                if arc is None:
+                    continue
+                first, last = arc
+                enter, leave = (first - 1) % elements, last
+                t_in, t_out = self.tension[k, enter], self.tension[k, leave]
+                d_in = x[k, first] - x[k, enter]
+                d_out = x[k, (last + 1) % elements] - x[k, last]
+                turn = np.arctan2(d_in[0] * d_out[1] - d_in[1] * d_out[0], d_in @ d_out)
+                tight[k, j], slack[k, j] = max(t_in, t_out), min(t_in, t_out)
+                wrap[k, j] = (sign[j] * turn) % (2 * np.pi)
+        capacity = np.exp(mu * wrap) - 1
+        with np.errstate(divide="ignore", invalid="ignore"):
+            util = np.where(slack > 0, (tight - slack) / (slack * capacity), np.where(tight > slack, np.inf, 0.0))
+        util[np.isnan(wrap) | (mu == 0)[None, :]] = np.nan
+        return Capstan(tight=tight, slack=slack, wrap=wrap, friction=mu, utilisation=util)
+
+    def lowpass(self, channel: str, cutoff: float) -> np.ndarray:
+        """A recorded channel with everything above ``cutoff`` Hz removed (zero phase, along
+        ``time``; :func:`beltrs.analysis.low_pass` on a uniform grid of the run's sample
+        spacing, then back onto ``time``), same shape and unit as the channel.
+
+        The raw channels are the model's answer and carry no filter. A low-pass is a
+        measurement band chosen on purpose: e.g. the tension a load cell of 2 Hz bandwidth
+        reads (``res.lowpass("tension", 2.0)``), or the slow dynamics of a start without
+        the belt's higher modes. Tensions follow the belt's elements (material points);
+        for a fixed point use :func:`beltrs.analysis.tension_at` first.
+
+        Args:
+            channel: a recorded array channel with a ``time`` axis first (``"tension"``,
+                ``"drive_torque"``, ``"pulley_speed"``, ...).
+            cutoff: highest frequency kept, Hz, > 0 and below the Nyquist frequency of the
+                recording.
+
+        Raises:
+            beltrs.SceneError: unknown or unrecorded channel, a bad cutoff, or fewer than 3
+                samples.
+        """
+        from .analysis import low_pass
+
+        if channel not in DIMS or channel == "time" or DIMS[channel][0] != "time":
+            raise _beltrs.SceneError(f"channel = {channel!r}: not a recorded time series "
+                                     f"(known: {', '.join(n for n in DIMS if n != 'time')})")
+        data = getattr(self, channel)
+        if data is None:
+            raise _beltrs.SceneError(f"channel = {channel!r}: not recorded in this run")
+        t = np.asarray(self.time, dtype=float)
+        if len(t) < 3:
+            raise _beltrs.SceneError(f"lowpass: {len(t)} samples; need at least 3")
+        step = float(np.median(np.diff(t)))
+        if not (isinstance(cutoff, (int, float)) and not isinstance(cutoff, bool) and 0 < cutoff < 0.5 / step):
+            raise _beltrs.SceneError(f"cutoff = {cutoff!r}: must be a number of Hz > 0 and below the "
+                                     f"recording's Nyquist frequency {0.5 / step:g} Hz")
+        x = np.asarray(data, dtype=float)
+        flat = x.reshape(len(t), -1)
+        grid = np.linspace(t[0], t[-1], max(3, int(round((t[-1] - t[0]) / step)) + 1))
+        out = np.empty_like(flat)
+        for k in range(flat.shape[1]):
+            filtered = low_pass(np.interp(grid, t, flat[:, k]), float(grid[1] - grid[0]), float(cutoff))
+            out[:, k] = np.interp(t, grid, filtered)
+        return out.reshape(x.shape)
+
+    def tension_lowpass(self, cutoff: float) -> np.ndarray:
+        """``[n, E]`` element tensions below ``cutoff`` Hz, N (:meth:`lowpass` of
+        ``"tension"``)."""
+        return self.lowpass("tension", cutoff)
+
+    def drive_torque_lowpass(self, cutoff: float) -> np.ndarray:
+        """``[n, P]`` drive torques below ``cutoff`` Hz, N*m (:meth:`lowpass` of
+        ``"drive_torque"``)."""
+        return self.lowpass("drive_torque", cutoff)
+
     def arrays(self) -> dict[str, np.ndarray]:
         """Every recorded array channel by name (channels not recorded are absent)."""
         return {name: getattr(self, name) for name in DIMS if getattr(self, name) is not None}
@@ -240,11 +491,17 @@ class Result:
         return int(self.time.shape[0])
 
     def __eq__(self, other: object) -> bool:
-        """Equal when every array is equal bit for bit (NaNs in the same places) and every
-        other field is equal."""
+        """Equal when the recorded data are: every array bit for bit (NaNs in the same
+        places), the time step, ``record_every``, ``interrupted``, the stage, pulley and
+        energy-column names and :attr:`metadata`. ``wall_time`` and ``checkpoint_error``
+        are not compared: they say how the run went on this machine (a saved and reloaded
+        Result does not carry ``checkpoint_error``; two identical runs take different wall
+        times), not what it computed."""
         if not isinstance(other, Result):
             return NotImplemented
         for f in fields(self):
+            if f.name in _NOT_COMPARED:
+                continue
             a, b = getattr(self, f.name), getattr(other, f.name)
             if f.name == "metadata":
                 if a.keys() != b.keys() or not all(_same(a[k], b[k]) for k in a):
@@ -363,6 +620,8 @@ class Result:
             "wall_time": float(self.wall_time),
             "interrupted": int(bool(self.interrupted)),
             "record_every": int(self.record_every),
+            "steps_accepted": int(self.steps_accepted),
+            "steps_rejected": int(self.steps_rejected),
             "stages": json.dumps(list(self.stages)),
             "metadata_types": json.dumps(meta_types),
         }
@@ -401,6 +660,41 @@ class Result:
         )
         frame.attrs["units"] = {q: UNITS[q] for q in PULLEY_SERIES} | {"time": "s"}
         return frame
+
+
+@dataclass
+class Capstan:
+    """The capstan state of each pulley (:meth:`Result.capstan`); ``[n, P]`` arrays.
+
+    Attributes:
+        tight: tight-side tension T1 (the larger strand tension at the contact arc's ends), N.
+        slack: slack-side tension T2, N.
+        wrap: wrap angle θ (turn from the incoming to the outgoing strand), rad.
+        friction: ``[P]`` the coefficient µ used, dimensionless.
+        utilisation: (T1 - T2) / (T2·(e^{µθ} - 1)), dimensionless: 1 at the
+            Euler–Eytelwein slip limit.
+    """
+
+    tight: np.ndarray
+    slack: np.ndarray
+    wrap: np.ndarray
+    friction: np.ndarray
+    utilisation: np.ndarray
+
+
+def _longest_arc(inside: np.ndarray) -> Optional[tuple[int, int]]:
+    """First and last node of the longest cyclic run of True in ``inside``, after filling
+    single-node gaps (a node that bounces off the surface inside an arc); None if there
+    is no run or every node is inside."""
+    on = inside | (np.roll(inside, 1) & np.roll(inside, -1))
+    if not on.any() or on.all():
+        return None
+    starts = np.flatnonzero(on & ~np.roll(on, 1))
+    ends = np.flatnonzero(on & ~np.roll(on, -1))
+    ends = ends[np.searchsorted(ends, starts) % len(ends)]  # each run's end, cyclically
+    size = (ends - starts) % len(on) + 1
+    best = int(np.argmax(size))
+    return int(starts[best]), int(ends[best])
 
 
 def load_result(path: Union[str, os.PathLike]) -> Result:

@@ -41,6 +41,7 @@ __all__ = [
     "Initial",
     "Idler",
     "Load",
+    "NonlinearContact",
     "Motor",
     "Pulley",
     "Recording",
@@ -517,6 +518,33 @@ class Holdback(_Table):
 
 
 @dataclass
+@_engine_table("nonlinear_contact")
+class NonlinearContact(_Table):
+    """Kubas's (2014) damped nonlinear belt-pulley contact (eq. 4-11), a pulley's
+    ``nonlinear_contact``, in place of the linear penalty law:
+    N = c1*p^2 + c2*p + delta(p)*b*pdot for penetration p > 0, N = 0 otherwise, where
+    delta(p) = d^2 (3 - 2d), d = p/p_max clamped to [0, 1], brings the damping in smoothly,
+    and N is never negative (a contact never pulls). Works with both belt formulations;
+    it acts at the nodes (node belt) or at the bodies' mass centres (rigid-body belt).
+    Defaults: Kubas's case K values (docs/kubas.md).
+
+    Attributes:
+        quadratic_stiffness: c1, N/m^2, >= 0. Default 3.0256e9.
+        linear_stiffness: c2, N/m, >= 0 (c1 + c2 > 0). Default 6.5e5.
+        damping: b, N*s/m, >= 0, fully in at p >= p_max. Default 300.
+        damping_depth: p_max, m, > 0. Default 1e-3.
+    """
+
+    quadratic_stiffness: float
+    linear_stiffness: float
+    damping: float
+    damping_depth: float
+
+    def __post_init__(self) -> None:
+        _normalise(self)
+
+
+@dataclass
 @_engine_table("pulley")
 class Pulley(_Table):
     """A pulley the belt wraps (thesis §4.2).
@@ -550,6 +578,10 @@ class Pulley(_Table):
         brake: brake. Default None.
         holdback: holdback against reverse rotation (:class:`Holdback`). Default None.
         name: label for messages and results; unique unless empty. Default "".
+        nonlinear_contact: Kubas's nonlinear contact law (:class:`NonlinearContact`) in
+            place of the linear one. Default None (linear). With it, leave
+            ``contact_stiffness`` at its default and give no ``contact_damping`` or
+            ``contact_damping_ratio`` (the law has its own; refused otherwise).
     """
 
     center: tuple[float, float]
@@ -567,6 +599,7 @@ class Pulley(_Table):
     brake: Optional[Brake]
     holdback: Optional[Holdback]
     name: str
+    nonlinear_contact: Optional[NonlinearContact]
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -653,6 +686,11 @@ class Belt(_Table):
         bending_stiffness: EI, N*m^2; 0 compiles no bending stage. Default 0.
         damping_ratio: axial damping as a fraction of one element's critical damping
             (thesis eq. 4.3); 0 compiles undamped axial springs. Default 0.
+        damping_time: Voigt damping of the belt material as a retardation time
+            tau = eta/E, s, >= 0 (Guo & Wang 2020: sigma = E*eps + eta*d(eps)/dt): each
+            element's damping is tau times its stiffness, b = tau*EA/l (and tau*EI/l for
+            the rigid bodies' torsional spring-dampers). Not with ``damping_ratio`` > 0.
+            Default None: damping from ``damping_ratio``.
         length: unstretched length, m. Default None = length of the initial path.
         elements: number of elements. Default None = fewest with each element at most
             ``max_element_angle`` of arc on the smallest pulley.
@@ -664,7 +702,21 @@ class Belt(_Table):
             compressed) more is refused as too short (too long) for its path, usually a
             unit slip. Raise it for a pre-strained elastic drive belt (the belt-drive
             literature's benchmarks are pre-strained 5.26 %). Default 0.1.
-        formulation: ``"node_kelvin_voigt"`` (Hustrulid). Default.
+        formulation: ``"node_kelvin_voigt"`` (Hustrulid's nodes; default) or
+            ``"rigid_body"`` (Kubas's and Guo & Wang's chain of rigid bodies, x, y and phi
+            each, joined by translational and torsional Kelvin-Voigt spring-dampers). The
+            rigid bodies take the node belt's rules and parameters: ``elements`` bodies
+            (or as many as ``max_element_angle`` asks) of length l = length/elements,
+            mass ``mass_per_length``*l, inertia m*l^2/12; spring-dampers
+            c_x = EA/l, c_phi = EI/l, damped at ``damping_ratio`` of critical
+            (b_x = 2 zeta sqrt(c_x m), b_phi = 2 zeta sqrt(c_phi I)); mass centres where
+            the node belt has its nodes. Not with ``tension_only`` or loads (refused).
+        pulley_contact: how the belt meets the pulleys: ``"nodes"`` (Hustrulid's nodal
+            penalty contact, thesis eq. 4.70-4.75; the belt round a pulley is a chord
+            polygon, with the chordal ripple of a chain on a sprocket on a held drum) or
+            ``"wrap"`` (elements on a pulley measured along their path round it, tangents
+            and arc: the strand leaves on the tangent, raw tension peaks without the ripple;
+            docs/wrap-contact.md). Default "nodes".
     """
 
     axial_stiffness: float
@@ -677,6 +729,8 @@ class Belt(_Table):
     tension_only: bool
     formulation: str
     max_placement_strain: float
+    pulley_contact: str
+    damping_time: Optional[float]
 
     def __post_init__(self) -> None:
         _normalise(self)
@@ -704,10 +758,25 @@ class Solver(_Table):
             a step above the limit is refused.
         time_step_fraction: in (0, 1]; used only when ``time_step`` is None. Default 0.5
             (the thesis ran at half its limit).
+        integrator: ``"central_difference"`` (default: explicit, at the automatic stable
+            step) or ``"rkf45"`` (adaptive Runge-Kutta-Fehlberg 4(5), Kubas's integrator;
+            ``Result.steps_accepted`` / ``steps_rejected`` count its steps). Under
+            ``"rkf45"`` the effects solved for a fixed step are refused with a SceneError:
+            stick-force friction (use the creep-rate friction model), speed-controlled
+            drives, brakes, idler running resistance and loads; ``time_step`` too.
+        relative_tolerance: RKF45's relative tolerance per step, dimensionless, > 0.
+            Default 1e-8: positions are of the size of the scene while the physics is in
+            deformations 1e-3 to 1e-5 of it (at 1e-6 a conservative drive's energy drifted
+            by 1.8e-4 in 2 ms, at 1e-8 by 8e-7).
+        absolute_tolerance: RKF45's absolute tolerance per step, in each component's SI
+            unit (m, rad, m/s, rad/s), >= 0. Default 1e-11.
     """
 
     time_step: Optional[float]
     time_step_fraction: float
+    integrator: str
+    relative_tolerance: float
+    absolute_tolerance: float
 
     def __post_init__(self) -> None:
         _normalise(self)

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any, Optional
 
-from . import din22101
+from . import _beltrs, din22101
 from ._beltrs import SceneError
 from .scene import Belt, Drive, Friction, Idler, Load, Pulley, Recording, Scene, Solver, StartCurve, Takeup
 
@@ -19,6 +19,7 @@ __all__ = [
     "hustrulid_loop",
     "hustrulid_torque_pulse",
     "idler_conveyor",
+    "kubas_case_k",
 ]
 
 
@@ -305,8 +306,9 @@ def guo_wang_conveyor(
 
     - Belt: steel cord ST1250, EA = 80 MN (elongation about 0.16 % at 10 % of the rated
       1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
-      critical, elements of ``element_length`` m (0.3: a quarter of the carry pitch, so the
-      polygonal belt does not rattle on the rolls; docs/stability.md).
+      critical, elements of ``element_length`` m (default 0.2: a sixth of the 1.2 m carry
+      pitch, so the polygonal belt does not rattle on the rolls, docs/stability.md, and
+      30 degrees of wrap per element on the 0.8 m drum).
     - Layout: tail pulley ("tail", radius 0.4 m, 500 kg) at (0, 0) on a horizontal
       gravity takeup pulled in -x with 2 x ``takeup_tension`` (default 50 kN per strand, a
       10.2 t counterweight over a sheave), chosen so that the slack side keeps the head
@@ -332,7 +334,7 @@ def guo_wang_conveyor(
             a positive value is converted to the clockwise (negative) sense of this
             layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
         length: centre distance, m. Default 972 (shorter conveyors for quick studies).
-        element_length: target element length, m. Default 0.3.
+        element_length: target element length, m. Default 0.2.
         elements: belt elements; overrides ``element_length`` (for
             :func:`beltrs.study.accuracy_cost`). Default None.
         material: kg per metre of belt on the carry strand. Default 55.6.
@@ -496,3 +498,33 @@ def guo_wang_din(length: float = GUO_WANG["length"], *, material: float = GUO_WA
         carry_per_metre=f * gravity * (mrc + p["belt_mass"] + material),
         return_per_metre=f * gravity * (mrr + p["belt_mass"]),
     )
+
+
+def kubas_case_k(ramp_time: float = 0.3, preload_strain: float = 0.00344) -> Scene:
+    """Case K: Kubas's (2014) poly-V belt transmission with the rigid-body belt
+    (``docs/kubas.md``, ``docs/reference-cases.md``).
+
+    Two pulleys of radius 0.027 m and 2.4e-4 kg*m^2, centres 0.515 m apart, the drive
+    ("drive") at the origin; 150 rigid bodies, 0.096 kg/m; EA = c_tra = 1.52e5 N (c_tra
+    per unit strain), c_tor = 0.026 N*m/rad per joint (EI = c_tor*l), translational damping
+    b_tra = 20.5 N*s/m per joint (as the ratio b_tra/(2*sqrt(EA*rhoA)) = 0.085); Kubas's
+    nonlinear contact (:class:`beltrs.NonlinearContact` defaults) on both pulleys;
+    stick-force friction mu_s = 1.05, mu_k = 1.0 (the creep-rate model of the paper is the
+    other choice); the drive torque rising linearly to 15 N*m counter-clockwise over
+    ``ramp_time``; the driven pulley ("driven") resisting with 15 N*m at 8*pi rad/s,
+    proportional to its speed. Steady running: T1 - T2 = M/r = 555.6 N.
+
+    Args:
+        ramp_time: time the drive torque takes to reach 15 N*m, s, > 0. Default 0.3 (the
+            paper's figure 12).
+        preload_strain: how much shorter than its path round the pulleys the belt is, as
+            a strain (length = path/(1 + strain)), dimensionless. Default 0.00344: a static
+            tension of 555 N (measured) once the bodies have sunk into the pulleys.
+    """
+    from .simulation import _real
+
+    ramp_time = _real("ramp_time", ramp_time, "must be a finite number > 0 (s)", lambda v: v > 0)
+    preload_strain = _real(
+        "preload_strain", preload_strain, "must be a finite number > -1", lambda v: v > -1
+    )
+    return Scene.from_dict(_beltrs.case_k_scene(ramp_time, preload_strain))

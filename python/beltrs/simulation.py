@@ -272,6 +272,9 @@ class Simulation:
             offset = abs(a.radius - b.radius) if a.wrap == b.wrap else a.radius + b.radius
             strands.append(math.sqrt(d * d - offset * offset) if d > offset else d)
         length = min(strands) if strands else self.path_length / 2
+        if not c > 0:
+            # EA/m' underflows (e.g. EA = 5e-324): no stress wave to resolve, the cap holds.
+            return MAX_RECORD_INTERVAL
         return min(MAX_RECORD_INTERVAL, 2.0 * length / c / SAMPLES_PER_STRAND_PERIOD)
 
     # --- state -------------------------------------------------------------------------
@@ -518,6 +521,7 @@ class Simulation:
         max_wall_time: Optional[float],
     ) -> Result:
         core = self._core
+        self._adaptive_start = (int(core.accepted_steps), int(core.rejected_steps))
         estimate = steps * _estimate_step_seconds(core) if steps > 0 else 0.0
         if max_wall_time is not None and estimate > max_wall_time:
             raise _beltrs.SceneError(
@@ -641,8 +645,39 @@ class Simulation:
             interrupted=bool(self._core.interrupted),
             pulley_names=[p.name for p in self.scene.pulleys],
             record_every=int(self._core.record_every) if record_every is None else record_every,
-            metadata={"rest_length": self.rest_length},
+            steps_accepted=int(self._core.accepted_steps) - getattr(self, "_adaptive_start", (0, 0))[0],
+            steps_rejected=int(self._core.rejected_steps) - getattr(self, "_adaptive_start", (0, 0))[1],
+            metadata={"rest_length": self.rest_length, **self._pulley_constants()},
         )
+
+    def _pulley_constants(self) -> dict[str, Any]:
+        """Constants a Result needs for its engineering views (signs along the direction of
+        travel, surface speed, capstan): each pulley's radius, m; +1/-1 for a belt wrapping
+        it counter-clockwise/clockwise in node order; its static friction coefficient (0
+        without); and the belt's direction of travel (+1 node order, -1 against, 0 unknown):
+        the direction the loads carry material, else the one the speed-controlled drives'
+        starting curves run the belt, if they agree."""
+        pulleys = self.scene.pulleys
+        direction = 0
+        loads = {d for _, d in diagnostics._belt_direction(self)} if self.scene.loads else set()
+        if len(loads) == 1:
+            direction = loads.pop()
+        else:
+            drives = {
+                int(np.sign(p.drive.start_curve.speed)) * (1 if p.wrap == "ccw" else -1)
+                for p in pulleys
+                if p.drive is not None and p.drive.start_curve is not None and p.drive.start_curve.speed
+            }
+            if len(drives) == 1:
+                direction = drives.pop()
+        return {
+            "pulley_radius": np.array([float(p.radius) for p in pulleys]),
+            "pulley_wrap_sign": np.array([1.0 if p.wrap == "ccw" else -1.0 for p in pulleys]),
+            "pulley_friction_static": np.array(
+                [float(p.friction.static) if p.friction is not None else 0.0 for p in pulleys]
+            ),
+            "travel_direction": int(direction),
+        }
 
     # --- checkpoints -------------------------------------------------------------------
     def save_checkpoint(self, path: Union[str, os.PathLike]) -> None:

@@ -62,6 +62,9 @@ pub struct Scratch {
     pub force: Vec<V2>,
     /// Element tension, N.
     pub tension: Vec<f64>,
+    /// Net torque on each rigid belt body about its mass centre, N·m (empty for the node
+    /// belt).
+    pub body_torque: Vec<f64>,
     /// Contacts of each pulley.
     pub contacts: Vec<PulleyContacts>,
     /// Friction scratch of each pulley.
@@ -117,6 +120,7 @@ impl Scratch {
         Scratch {
             force: vec![V2::zeros(); n],
             tension: vec![0.0; n],
+            body_torque: vec![0.0; if model.is_rigid() { n } else { 0 }],
             contacts: vec![PulleyContacts::default(); p],
             stick: vec![StickScratch::default(); p],
             pulley_force: vec![V2::zeros(); p],
@@ -134,7 +138,8 @@ impl Scratch {
     }
 
     /// Zero the per-body outputs that stages add to or may leave unset. The node forces
-    /// need no reset: the axial stage, which every model has, writes them all.
+    /// (and body torques) need no reset: the axial or rigid-chain stage, one of which every
+    /// model has, writes them all.
     fn clear_body_outputs(&mut self) {
         self.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         self.brake_torque.iter_mut().for_each(|t| *t = 0.0);
@@ -193,7 +198,11 @@ impl StageContext<'_> {
 /// `model.stages`); without, nothing is timed.
 pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option<&mut [f64]>) {
     let model = cx.model;
-    debug_assert!(model.has_stage(Stage::Axial) || model.has_stage(Stage::AxialDamped));
+    debug_assert!(
+        model.has_stage(Stage::Axial)
+            || model.has_stage(Stage::AxialDamped)
+            || model.has_stage(Stage::RigidChain)
+    );
     cx.scratch.clear_body_outputs();
     for (k, &stage) in model.stages.iter().enumerate() {
         let started = profile.as_ref().map(|_| Instant::now());
@@ -203,6 +212,7 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             Stage::Axial | Stage::AxialDamped if axial_done => {}
             Stage::Axial | Stage::AxialDamped => crate::belt::node::stage::axial(cx),
             Stage::Bending => crate::belt::node::stage::bending(cx),
+            Stage::RigidChain => crate::belt::rigid::stage::chain(cx),
             Stage::PulleyContact => crate::contact::stage::pulley_contact(cx),
             Stage::IdlerContact => crate::contact::stage::idler_contact(cx),
             Stage::RunningResistance => crate::friction::stage::running_resistance(cx),

@@ -27,6 +27,9 @@ pub struct Simulation {
     pub recording: Recording,
     pub(crate) record_every: u64,
     pub(crate) record_counter: u64,
+    /// Time the current recording started, s (the adaptive integrator's recording grid
+    /// starts there).
+    pub(crate) record_start: f64,
     pub(crate) max_samples: usize,
     /// Per-stage wall time, s (same order as `model.stages`), when profiling is on.
     pub profile: Option<Vec<f64>>,
@@ -59,6 +62,7 @@ impl Simulation {
             recording,
             record_every: 1,
             record_counter: 0,
+            record_start: 0.0,
             max_samples: usize::MAX,
             profile: None,
         }
@@ -80,6 +84,16 @@ impl Simulation {
                 self.model.nodes,
                 self.model.pulleys.len(),
                 self.model.idlers.len()
+            )));
+        }
+        if model.formulation != self.model.formulation || model.integrator != self.model.integrator
+        {
+            return Err(BeltError::Usage(format!(
+                "the new scene asks for a {} belt integrated by {}, the running one is a {} belt integrated by {}: the formulation and the integrator may not change during a run",
+                model.formulation.name(),
+                model.integrator.name(),
+                self.model.formulation.name(),
+                self.model.integrator.name()
             )));
         }
         for (j, (a, b)) in model.pulleys.iter().zip(&self.model.pulleys).enumerate() {
@@ -121,6 +135,17 @@ impl Simulation {
         self.model = model;
         self.profile = profile;
         Ok(())
+    }
+
+    /// How far the stored velocities lag the state's time, s: half a step with central
+    /// differences (v(t − Δt/2)), none with the adaptive integrator (v(t)). The recorder
+    /// and the energies centre velocities on t with it.
+    #[inline]
+    pub fn velocity_lag(&self) -> f64 {
+        match self.model.integrator {
+            Integrator::CentralDifference => 0.5 * self.model.dt,
+            Integrator::Rkf45(_) => 0.0,
+        }
     }
 
     /// Turn per-stage timing on (zeroing it) or off.
@@ -196,6 +221,12 @@ impl Simulation {
             Integrator::CentralDifference => {
                 self.central_difference_steps(steps, tensions, between)
             }
+            // An adaptive integrator has no steps of its own size: `steps` model steps of
+            // time, without recording.
+            Integrator::Rkf45(_) => {
+                let end = self.state.time + steps as f64 * self.model.dt;
+                self.adaptive_to(end, u64::MAX, false).map(drop)
+            }
         }
     }
 
@@ -213,6 +244,7 @@ impl Simulation {
         );
         self.record_every = every.max(1);
         self.record_counter = 0;
+        self.record_start = self.state.time;
         self.max_samples = max_samples.max(2);
     }
 
@@ -228,7 +260,7 @@ impl Simulation {
     }
 
     /// Sample if the step counter is on the recording grid, decimating first when full.
-    fn record_if_due(&mut self) -> BeltResult<()> {
+    pub(crate) fn record_if_due(&mut self) -> BeltResult<()> {
         if !self.record_counter.is_multiple_of(self.record_every) {
             return Ok(());
         }
@@ -258,6 +290,11 @@ impl Simulation {
     /// Advance `steps` steps, recording as set by [`Simulation::begin_recording`]. On a
     /// blow-up the recording keeps everything sampled before it.
     pub fn advance(&mut self, steps: u64) -> BeltResult<()> {
+        if let Integrator::Rkf45(_) = self.model.integrator {
+            // `steps` model steps of time, recorded on the recording's time grid.
+            let end = self.state.time + steps as f64 * self.model.dt;
+            return self.adaptive_to(end, u64::MAX, true).map(drop);
+        }
         self.steps_with(steps, true, |sim| {
             sim.record_if_due()?;
             sim.record_counter += 1;
@@ -289,6 +326,7 @@ impl Simulation {
         };
         match self.model.integrator {
             Integrator::CentralDifference => self.central_difference_to(end, max_steps, record),
+            Integrator::Rkf45(_) => self.adaptive_to(end, max_steps, true),
         }
     }
 
@@ -378,7 +416,7 @@ impl Simulation {
                     (0..m.nodes).max_by(|&a, &b| key(a).total_cmp(&key(b)))
                 };
                 // An energy overflows where its density is largest: name that node.
-                let half = 0.5 * m.dt;
+                let half = self.velocity_lag();
                 let spinning = m.dofs.rigid.iter().find_map(|&d| {
                     let mass = self.inertia.rigid(m, d);
                     let w = s.rigid_speed(d) + half * sc.rigid_force(m, d) / mass;
@@ -388,6 +426,7 @@ impl Simulation {
                     Some(match d {
                         Rigid::Takeup(j) | Rigid::Pulley(j) => Part::Pulley(j),
                         Rigid::Idler(k) => Part::Idler(k),
+                        Rigid::Body(i) => Part::Node(i),
                     })
                 });
                 let part = match quantity.as_str() {

@@ -56,6 +56,20 @@ pub struct State {
     pub node_mass: Vec<f64>,
     /// Where each load's zone is (`crate::loads`).
     pub load_edges: Vec<LoadEdges>,
+    /// Angle φ of each rigid belt body's axis from the x axis, rad (rigid-body belt; empty
+    /// for the node belt). The bodies' mass centres are `position`.
+    pub body_angle: Vec<f64>,
+    /// Angular speed of each rigid belt body, rad/s, at the velocities' instant (empty for
+    /// the node belt).
+    pub body_spin: Vec<f64>,
+    /// The adaptive integrator's next step, s (0: not yet chosen; unused by central
+    /// differences). Part of the state so that a resumed run takes the same steps.
+    pub adaptive_step: f64,
+    /// Steps the adaptive integrator accepted since the model was compiled.
+    pub accepted_steps: u64,
+    /// Steps the adaptive integrator rejected (and retried smaller) since the model was
+    /// compiled.
+    pub rejected_steps: u64,
     /// Speed at which each pulley's deceleration brake began its ramp, rad/s (the pulley's
     /// speed in the first step from its `applied` time); 0 before, and for other pulleys
     /// (`crate::drives::brake`).
@@ -101,6 +115,11 @@ impl State {
             drive_work: 0.0,
             node_mass,
             load_edges,
+            body_angle: model.initial_angles.clone(),
+            body_spin: vec![0.0; model.initial_angles.len()],
+            adaptive_step: 0.0,
+            accepted_steps: 0,
+            rejected_steps: 0,
             brake_ramp: vec![0.0; model.pulleys.len()],
             drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
         }
@@ -131,6 +150,7 @@ impl State {
         self.pulley_omega.iter_mut().for_each(|w| *w = 0.0);
         self.takeup_speed.iter_mut().for_each(|w| *w = 0.0);
         self.idler_omega.iter_mut().for_each(|w| *w = 0.0);
+        self.body_spin.iter_mut().for_each(|w| *w = 0.0);
     }
 }
 
@@ -147,10 +167,14 @@ pub enum Rigid {
     /// Rotation of idler `k` (`idler_omega[k]`; its angle is not kept: nothing reads it),
     /// rad.
     Idler(usize),
+    /// Rotation of rigid belt body `i` about its mass centre (`body_angle[i]`,
+    /// `body_spin[i]`), rad.
+    Body(usize),
 }
 
 /// The layout of the generalized coordinates: the belt's degrees of freedom (two per
-/// node), then the rigid ones in a fixed order (takeups, pulleys, idlers). Integrators,
+/// node, or per body's mass centre), then the rigid ones in a fixed order (takeups,
+/// pulleys, idlers, and the rigid-body belt's body rotations). Integrators,
 /// relaxations, energies and diagnostics loop over it once instead of per body kind.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct DofLayout {
@@ -173,6 +197,12 @@ impl DofLayout {
         DofLayout { nodes, rigid }
     }
 
+    /// This layout with the rotations of `bodies` rigid belt bodies appended.
+    pub fn with_bodies(mut self, bodies: usize) -> DofLayout {
+        self.rigid.extend((0..bodies).map(Rigid::Body));
+        self
+    }
+
     /// Number of generalized coordinates.
     pub fn len(&self) -> usize {
         2 * self.nodes + self.rigid.len()
@@ -192,6 +222,7 @@ impl State {
             Rigid::Takeup(j) => self.takeup_speed[j],
             Rigid::Pulley(j) => self.pulley_omega[j],
             Rigid::Idler(k) => self.idler_omega[k],
+            Rigid::Body(i) => self.body_spin[i],
         }
     }
 
@@ -202,6 +233,7 @@ impl State {
             Rigid::Takeup(j) => (Some(self.takeup_travel[j]), self.takeup_speed[j]),
             Rigid::Pulley(j) => (Some(self.pulley_angle[j]), self.pulley_omega[j]),
             Rigid::Idler(k) => (None, self.idler_omega[k]),
+            Rigid::Body(i) => (Some(self.body_angle[i]), self.body_spin[i]),
         }
     }
 
@@ -212,6 +244,7 @@ impl State {
             Rigid::Takeup(j) => &mut self.takeup_speed[j],
             Rigid::Pulley(j) => &mut self.pulley_omega[j],
             Rigid::Idler(k) => &mut self.idler_omega[k],
+            Rigid::Body(i) => &mut self.body_spin[i],
         }
     }
 
@@ -223,6 +256,7 @@ impl State {
             Rigid::Takeup(j) => (Some(&mut self.takeup_travel[j]), &mut self.takeup_speed[j]),
             Rigid::Pulley(j) => (Some(&mut self.pulley_angle[j]), &mut self.pulley_omega[j]),
             Rigid::Idler(k) => (None, &mut self.idler_omega[k]),
+            Rigid::Body(i) => (Some(&mut self.body_angle[i]), &mut self.body_spin[i]),
         }
     }
 }

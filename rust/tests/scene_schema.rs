@@ -55,7 +55,7 @@ fn unknown_keys_name_the_path_and_suggest() {
     let m = error(&map(&[("solver", map(&[("xyzzy", Value::Int(1))]))]));
     assert_eq!(
         m,
-        "solver.xyzzy = 'xyzzy': unknown key (known keys here: time_step, time_step_fraction)"
+        "solver.xyzzy = 'xyzzy': unknown key (known keys here: absolute_tolerance, integrator, relative_tolerance, time_step, time_step_fraction)"
     );
 }
 

@@ -376,3 +376,41 @@ fn unused_controller_costs_nothing() {
     assert!(sim.model.has_stage(Stage::SpeedDrives));
     assert!(!sim.model.has_drive_memory);
 }
+
+/// A checkpoint written before the drives' memory was added (it ends after the load
+/// zones) still reads, with zero memory.
+#[test]
+fn checkpoint_without_drive_memory_reads_as_zero_memory() {
+    let mut scene = rigid_scene(f64::INFINITY, 1e-4);
+    scene.pulleys[0].drive.as_mut().unwrap().controller = None;
+    let mut a = Simulation::new(&scene).unwrap();
+    a.step(100).unwrap();
+    let bytes = checkpoint::encode(&a);
+    // Make it a version 4 file of before the drives' memory: version 4 in the header, no
+    // formulation and integrator names (added in version 5) after the engine version, and
+    // the state ending after the load zones: drop the drives' memory (a count and three
+    // numbers per pulley), the brake ramps (a count and one number per pulley) and
+    // version 5's tail (two empty body arrays for the node belt, the adaptive step and two
+    // step counts). Then fix the payload length and the checksum.
+    let p = scene.pulleys.len();
+    let tail = (8 + 24 * p) + (8 + 8 * p) + 8 + 8 + 8 + 8 + 8;
+    let string_end =
+        |at: usize| at + 8 + u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    let engine_end = string_end(24);
+    let tags_end = string_end(string_end(engine_end));
+    let end = bytes.len() - 4 - tail;
+    let mut old = bytes[..engine_end].to_vec();
+    old.extend_from_slice(&bytes[tags_end..end]);
+    old[8..12].copy_from_slice(&4u32.to_le_bytes());
+    let payload = (old.len() - 24) as u64;
+    old[16..24].copy_from_slice(&payload.to_le_bytes());
+    let crc = checkpoint::crc32(&old);
+    old.extend_from_slice(&crc.to_le_bytes());
+    let b = checkpoint::decode(&old).unwrap();
+    assert_eq!(b.state, a.state);
+    assert!(b
+        .state
+        .drive_memory
+        .iter()
+        .all(|m| *m == Default::default()));
+}

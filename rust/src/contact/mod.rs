@@ -1,5 +1,6 @@
-//! Penalty contact between the belt and pulleys (at the nodes, thesis eq. 4.70–4.75) and
-//! between the belt and idlers (on the element centre line, thesis eq. 4.95–4.102).
+//! Contact between the belt and pulleys (wrap contact, [`wrap`], with nodal penalty
+//! contact, thesis eq. 4.70–4.75) and between the belt and idlers (on the element centre
+//! line, thesis eq. 4.95–4.102).
 //!
 //! The thesis writes the pulley law as f = k_c (R − a)/R; here the stiffness is per metre
 //! of penetration, f = k (R − a), so k = k_c / R. Contact damping (optional, not in the
@@ -7,6 +8,7 @@
 
 pub mod nonlinear;
 pub mod stage;
+pub mod wrap;
 
 use crate::state::ContactWindow;
 use nalgebra::Vector2;
@@ -24,6 +26,12 @@ pub struct PulleyContacts {
     pub normal_force: Vec<f64>,
     /// Penetration, m.
     pub penetration: Vec<f64>,
+    /// Per window node: normal load from the wrapped elements and the penalty, N, and its
+    /// load-weighted outward normal (scratch of [`pulley_wrap_contact`]).
+    load: Vec<f64>,
+    load_normal: Vec<V2>,
+    /// Elements measured along their wrapped path this step: (element, path length, m).
+    pub wrapped: Vec<(usize, f64)>,
 }
 
 impl PulleyContacts {
@@ -33,6 +41,7 @@ impl PulleyContacts {
         self.normal.clear();
         self.normal_force.clear();
         self.penetration.clear();
+        self.wrapped.clear();
     }
     /// Number of nodes in contact.
     pub fn len(&self) -> usize {
@@ -139,6 +148,25 @@ pub fn pulley_contact(
     force: &mut [V2],
     out: &mut PulleyContacts,
 ) -> V2 {
+    let (k, c) = (body.stiffness, body.damping);
+    pulley_contact_law(window, x, v, body, force, out, |depth, approach| {
+        (k * depth + c * approach).max(0.0)
+    })
+}
+
+/// [`pulley_contact`] with the normal force given by `law`(penetration, approach speed)
+/// (N, ≥ 0): the linear penalty, or Kubas's nonlinear law
+/// ([`nonlinear::NonlinearContact::normal_force`]).
+#[inline(always)]
+pub fn pulley_contact_law(
+    window: &ContactWindow,
+    x: &[V2],
+    v: &[V2],
+    body: &PulleyBody,
+    force: &mut [V2],
+    out: &mut PulleyContacts,
+    law: impl Fn(f64, f64) -> f64,
+) -> V2 {
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();
@@ -154,7 +182,7 @@ pub fn pulley_contact(
         let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
         let depth = body.radius - a;
         let approach = -(v[i] - body.center_velocity).dot(&normal);
-        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+        let fn_ = law(depth, approach);
         let f = normal * fn_;
         force[i] += f;
         on_pulley -= f;
@@ -162,6 +190,104 @@ pub fn pulley_contact(
         out.normal.push(normal);
         out.normal_force.push(fn_);
         out.penetration.push(depth);
+    }
+    on_pulley
+}
+
+/// Wrap contact with one pulley (the default pulley contact, see [`wrap`]): every element
+/// between two nodes of the window whose path wraps the pulley is measured along that path
+/// (its chord force from the axial pass replaced, its tension written to `tension`), the
+/// nodes inside the circle get the nodal penalty force of [`pulley_contact`], and each node
+/// that carries normal load (its share of its elements' arc loads T·φ, plus its penalty
+/// force) is recorded in `out` with that load and its load-weighted outward normal, for the
+/// friction solve. Returns the resultant force on the pulley.
+#[allow(clippy::too_many_arguments)]
+pub fn pulley_wrap_contact(
+    window: &ContactWindow,
+    x: &[V2],
+    v: &[V2],
+    body: &PulleyBody,
+    law: &wrap::ElementLaw,
+    force: &mut [V2],
+    tension: &mut [f64],
+    out: &mut PulleyContacts,
+) -> V2 {
+    out.clear();
+    let n = x.len();
+    let w = window.len;
+    out.load.clear();
+    out.load.resize(w, 0.0);
+    out.load_normal.clear();
+    out.load_normal.resize(w, V2::zeros());
+    let mut on_pulley = V2::zeros();
+    // Elements between consecutive window nodes (and the closing one if the window is the
+    // whole loop). An element reaching outside the window cannot touch the circle: the
+    // window holds every node within one element length (its margin) of it.
+    let elements = if w == n { w } else { w.saturating_sub(1) };
+    for k in 0..elements {
+        let i = (window.first + k) % n;
+        let j = (i + 1) % n;
+        let Some(g) = wrap::wrap(x[i], x[j], body.center, body.radius) else {
+            continue;
+        };
+        let (t, on) = wrap::apply_wrap(
+            &g,
+            i,
+            (i, j),
+            x,
+            v,
+            (body.center, body.center_velocity),
+            (body.radius, 0.5 * body.stiffness),
+            law,
+            force,
+        );
+        tension[i] = t;
+        out.wrapped.push((i, g.length));
+        on_pulley += on;
+        let load = t * g.angle;
+        let kq = if k + 1 == w { 0 } else { k + 1 };
+        out.load[k] += load * (1.0 - g.share_q);
+        out.load_normal[k] += g.normal_p * (load * (1.0 - g.share_q));
+        out.load[kq] += load * g.share_q;
+        out.load_normal[kq] += g.normal_q * (load * g.share_q);
+    }
+    let r2 = body.radius * body.radius;
+    for k in 0..w {
+        let i = (window.first + k) % n;
+        let rel = x[i] - body.center;
+        let a2 = rel.norm_squared();
+        let mut depth = 0.0;
+        if a2 < r2 {
+            let a = a2.sqrt();
+            let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
+            depth = body.radius - a;
+            let approach = -(v[i] - body.center_velocity).dot(&normal);
+            let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+            let f = normal * fn_;
+            force[i] += f;
+            on_pulley -= f;
+            out.load[k] += fn_;
+            out.load_normal[k] += f;
+        }
+        let load = out.load[k];
+        if load > 0.0 {
+            let s = out.load_normal[k];
+            let norm = s.norm();
+            let normal = if norm > 0.0 {
+                s / norm
+            } else {
+                let a = rel.norm();
+                if a > 0.0 {
+                    rel / a
+                } else {
+                    V2::new(1.0, 0.0)
+                }
+            };
+            out.node.push(i);
+            out.normal.push(normal);
+            out.normal_force.push(load);
+            out.penetration.push(depth);
+        }
     }
     on_pulley
 }

@@ -47,8 +47,9 @@ pub fn cubic_step_slope(x: f64, x0: f64, y0: f64, x1: f64, y1: f64) -> f64 {
 }
 
 /// Parameters of the nonlinear contact law (Kubas eq. 9 and 11). Defaults: case K's values
-/// (Kubas section 4).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// (Kubas section 4). In a scene it is a pulley's `nonlinear_contact` table.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct NonlinearContact {
     /// c₁: quadratic stiffness, N/m², ≥ 0. Default 3.0256·10⁹.
     pub quadratic_stiffness: f64,
@@ -138,6 +139,27 @@ impl NonlinearContact {
             0.0
         } else {
             2.0 * self.quadratic_stiffness * penetration + self.linear_stiffness
+        }
+    }
+
+    /// Stored elastic energy c₁p³/3 + c₂p²/2 for p > 0, else 0, J.
+    #[inline]
+    pub fn energy(&self, penetration: f64) -> f64 {
+        if penetration <= 0.0 {
+            0.0
+        } else {
+            let p = penetration;
+            (self.quadratic_stiffness * p / 3.0 + 0.5 * self.linear_stiffness) * p * p
+        }
+    }
+
+    /// The law with both stiffnesses times `scale` (the relaxation's contact continuation).
+    #[inline]
+    pub fn scaled(&self, scale: f64) -> NonlinearContact {
+        NonlinearContact {
+            quadratic_stiffness: self.quadratic_stiffness * scale,
+            linear_stiffness: self.linear_stiffness * scale,
+            ..*self
         }
     }
 

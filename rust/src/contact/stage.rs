@@ -1,12 +1,21 @@
-//! Contact stages: belt nodes on pulleys, belt elements on idlers.
+//! Contact stages: the belt wrapping pulleys, belt elements on idlers.
 
-use super::{IdlerBody, PulleyBody};
+use super::{wrap::ElementLaw, IdlerBody, PulleyBody};
+use crate::model::Stage;
 use crate::pipeline::StageContext;
 
-/// Nodal penalty contact with pulleys (thesis eq. 4.70–4.75), searched in each pulley's
-/// window of nodes.
+/// Contact with pulleys, searched in each pulley's window of nodes: nodal penalty contact
+/// (thesis eq. 4.70–4.75), or wrap contact ([`super::wrap`], `belt.pulley_contact =
+/// "wrap"`: elements measured along their path round the pulley, with nodal penalty).
 pub fn pulley_contact(cx: &mut StageContext<'_>) {
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
+    let law = ElementLaw {
+        stiffness: &m.axial_stiffness,
+        damping: &m.axial_damping,
+        rest_length: &m.rest_length,
+        damped: effects.damping && m.has_stage(Stage::AxialDamped),
+        tension_only: m.tension_only,
+    };
     for (j, p) in m.pulleys.iter().enumerate() {
         // Zero stiffness: the belt passes through this pulley (no contact).
         if p.contact_stiffness == 0.0 {
@@ -26,14 +35,41 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             &body,
             s.step.is_multiple_of(super::FULL_SCAN_INTERVAL),
         );
-        sc.pulley_force[j] = super::pulley_contact(
-            &s.pulley_window[j],
-            &s.position,
-            &s.velocity,
-            &body,
-            &mut sc.force,
-            &mut sc.contacts[j],
-        );
+        let (window, contacts) = (&s.pulley_window[j], &mut sc.contacts[j]);
+        sc.pulley_force[j] = match &p.nonlinear {
+            // Kubas's nonlinear law, nodal (validation refuses it with wrap contact).
+            Some(nonlinear) => {
+                let mut nl = nonlinear.scaled(cx.contact_scale);
+                nl.damping = effects.damped(nl.damping);
+                super::pulley_contact_law(
+                    window,
+                    &s.position,
+                    &s.velocity,
+                    &body,
+                    &mut sc.force,
+                    contacts,
+                    |p, rate| nl.normal_force(p, rate),
+                )
+            }
+            None if m.wrap_contact => super::pulley_wrap_contact(
+                window,
+                &s.position,
+                &s.velocity,
+                &body,
+                &law,
+                &mut sc.force,
+                &mut sc.tension,
+                contacts,
+            ),
+            None => super::pulley_contact(
+                window,
+                &s.position,
+                &s.velocity,
+                &body,
+                &mut sc.force,
+                contacts,
+            ),
+        };
     }
 }
 

@@ -224,6 +224,7 @@ impl Simulation {
                     check += s.takeup_travel[j] + s.takeup_speed[j];
                 }
                 Rigid::Idler(_) => check += new,
+                Rigid::Body(i) => check += new + s.body_angle[i],
             }
         }
         if m.has_drive_memory {
@@ -274,6 +275,14 @@ impl Simulation {
                 Rigid::Idler(k) if !speed.is_finite() => {
                     return diverged("angular speed", format!("idler {k}"))
                 }
+                Rigid::Body(i) if !(speed.is_finite() && coordinate.is_finite()) => {
+                    let q = if speed.is_finite() {
+                        "body angle"
+                    } else {
+                        "body angular speed"
+                    };
+                    return diverged(q, format!("belt body {i}"));
+                }
                 _ => continue,
             };
             return diverged(
@@ -301,7 +310,8 @@ impl Simulation {
         tensions: bool,
         mut between: impl FnMut(&mut Self) -> BeltResult<()>,
     ) -> BeltResult<()> {
-        let fuse = self.profile.is_none() && self.model.loads.is_empty();
+        // The fused axial pass is the node belt's.
+        let fuse = self.profile.is_none() && self.model.loads.is_empty() && !self.model.is_rigid();
         let dt = self.model.dt;
         let mut axial_done = false;
         for k in 0..steps {
@@ -391,7 +401,8 @@ impl Simulation {
     /// v ← v + a(t)·(drift − Δt)/2. The next step then kicks by Δt from there, which is
     /// the variable-step central difference's kick (drift + Δt)/2 from v(t − drift/2)
     /// (exactly so where the forces do not depend on velocity). A pulley held by a brake or
-    /// a speed-controlled drive is put at its held speed at t − Δt/2.
+    /// a speed-controlled drive is put at its held speed at t − Δt/2; a fluid-coupled
+    /// motor's speed is shifted like the pulleys'.
     fn recentre(&mut self, drift: f64) {
         self.evaluate(Effects::ALL);
         let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
@@ -429,6 +440,10 @@ impl Simulation {
             };
             let speed = s.rigid_speed_mut(d);
             *speed = held.unwrap_or(*speed + shift * force / mass);
+        }
+        // A motor behind a fluid coupling keeps its speed at the half step like a pulley.
+        if m.has_drive_memory {
+            crate::drives::motor::advance_all(m, s, sc, shift);
         }
     }
 }

@@ -7,12 +7,13 @@
 //! - [`relax`]: static relaxation (FIRE, kinetic-energy damping) with its own step,
 //!   fictitious masses and a continuation in contact stiffness.
 //! - [`rkf45`]: adaptive Runge–Kutta–Fehlberg 4(5) over a flat state vector and a
-//!   derivative callback (Kubas 2014's integrator; not yet an [`Integrator`] variant:
-//!   the case K prototype drives it outside `Simulation`).
+//!   derivative callback (Kubas 2014's integrator), and [`adaptive`], which runs it on the
+//!   whole layout of a [`crate::Simulation`] ([`Integrator::Rkf45`]).
 //!
 //! [`Integrator`] is the seam: [`crate::Simulation`] matches on the model's integrator to
 //! advance; a new one is a file here, a variant and an arm (docs/architecture.md).
 
+pub mod adaptive;
 pub mod central_difference;
 pub mod relax;
 pub mod rkf45;
@@ -21,18 +22,34 @@ use crate::model::Model;
 use crate::state::Rigid;
 
 /// The time integrator of a dynamic run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Integrator {
     /// Explicit central differences at the model's stable step (thesis eq. 4.58–4.60).
     #[default]
     CentralDifference,
+    /// Adaptive Runge–Kutta–Fehlberg 4(5) with these settings ([`adaptive`]).
+    Rkf45(rkf45::Rkf45Params),
 }
 
 impl Integrator {
-    /// Stable snake_case name.
+    /// Stable snake_case name (the scene's `solver.integrator`).
     pub fn name(self) -> &'static str {
         match self {
             Integrator::CentralDifference => "central_difference",
+            Integrator::Rkf45(_) => "rkf45",
+        }
+    }
+
+    /// The integrator `scene` asks for.
+    pub fn of(scene: &crate::scene::Scene) -> Integrator {
+        let s = &scene.solver;
+        match s.integrator {
+            crate::scene::IntegratorKind::CentralDifference => Integrator::CentralDifference,
+            crate::scene::IntegratorKind::Rkf45 => Integrator::Rkf45(rkf45::Rkf45Params {
+                relative_tolerance: s.relative_tolerance,
+                absolute_tolerance: s.absolute_tolerance,
+                ..Default::default()
+            }),
         }
     }
 }
@@ -49,6 +66,9 @@ pub struct Inertia {
     pub same_inv_mass: Option<f64>,
     /// Translating mass of each pulley's takeup, kg (∞ without a takeup).
     pub takeup_mass: Vec<f64>,
+    /// Inertia of each rigid belt body about its mass centre, kg·m² (empty for the node
+    /// belt): the model's, or the relaxation's fictitious ones.
+    pub body_inertia: Vec<f64>,
     /// True for the physical masses (dynamics): the loads stage then keeps `mass` and
     /// `inv_mass` equal to the state's node masses. False for the relaxation's fictitious
     /// masses.
@@ -73,6 +93,7 @@ impl Inertia {
                 .iter()
                 .map(|p| p.takeup.as_ref().map_or(f64::INFINITY, |t| t.moving_mass))
                 .collect(),
+            body_inertia: model.body_inertia.clone(),
             physical: true,
         }
     }
@@ -84,6 +105,7 @@ impl Inertia {
             Rigid::Takeup(j) => self.takeup_mass[j],
             Rigid::Pulley(j) => model.pulleys[j].inertia,
             Rigid::Idler(k) => model.idlers[k].inertia,
+            Rigid::Body(i) => self.body_inertia[i],
         }
     }
 }
@@ -99,6 +121,7 @@ impl crate::pipeline::Scratch {
             },
             Rigid::Pulley(j) => self.pulley_torque(j),
             Rigid::Idler(k) => self.idler_torque[k],
+            Rigid::Body(i) => self.body_torque[i],
         }
     }
 }

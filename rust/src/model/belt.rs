@@ -106,7 +106,15 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
             ),
         ));
     }
-    let (initial_positions, _chord) = path.equal_chord_nodes(n)?;
+    let initial_positions = if belt.pulley_contact == crate::scene::PulleyContact::Wrap {
+        // Wrap contact measures an element on a pulley along its path round it
+        // (contact::wrap): nodes at equal arc length strain every element equally.
+        let step = path.length / n as f64;
+        (0..n).map(|k| path.point(k as f64 * step)).collect()
+    } else {
+        // Nodal contact: the chord polygon on a pulley is the belt; equal chords.
+        path.equal_chord_nodes(n)?.0
+    };
     Ok(arrays(scene, n, l0, initial_positions, None))
 }
 
@@ -122,7 +130,11 @@ fn arrays(
     let rho = belt.mass_per_length;
     let k = belt.axial_stiffness / l0;
     let m_el = rho * l0;
-    let c = 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt();
+    let c = match belt.damping_time {
+        // Voigt: b = τ·k (Guo & Wang's σ = Eε + ηε̇ with τ = η/E).
+        Some(tau) => tau * k,
+        None => 2.0 * m_el * belt.damping_ratio * (k / m_el).sqrt(),
+    };
     let rest_length = vec![l0; n];
     let axial_stiffness = vec![k; n];
     let axial_damping = vec![c; n];

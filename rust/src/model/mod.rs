@@ -8,6 +8,7 @@
 //! in [`crate::state::State`].
 
 mod belt;
+mod belt_rigid;
 mod design;
 mod idlers;
 mod path;
@@ -26,7 +27,7 @@ use crate::forces;
 use crate::geometry::BeltPath;
 use crate::integrate::Integrator;
 use crate::loads::LoadModel;
-use crate::scene::Scene;
+use crate::scene::{Formulation, Scene};
 use crate::state::DofLayout;
 use nalgebra::Vector2;
 
@@ -64,6 +65,21 @@ pub struct Model {
     pub uniform: Option<forces::Uniform>,
     /// Elements carry no compression.
     pub tension_only: bool,
+    /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
+    /// false: nodal contact.
+    pub wrap_contact: bool,
+    /// The belt formulation. With [`Formulation::RigidBody`] the "nodes" are the bodies'
+    /// mass centres and the "elements" the joints between them (joint e joins body e and
+    /// e+1): `mass`, `rest_length` (body length), `axial_stiffness` and `axial_damping`
+    /// (translational SDE c_x = EA/l, b_x), `bending_stiffness` (torsional SDE c_φ = EI/l)
+    /// are read per body and per joint (`crate::belt::rigid`).
+    pub formulation: Formulation,
+    /// Body inertias about their mass centres, kg·m² (rigid-body belt; empty otherwise).
+    pub body_inertia: Vec<f64>,
+    /// Torsional SDE damping per joint, N·m·s/rad (rigid-body belt; empty otherwise).
+    pub torsional_damping: Vec<f64>,
+    /// Initial body angles, rad (rigid-body belt; empty otherwise).
+    pub initial_angles: Vec<f64>,
     /// Gravitational acceleration, m/s².
     pub gravity: f64,
     /// Pulleys.
@@ -136,7 +152,14 @@ impl Model {
             None => None,
         };
         let on = placement.as_ref().unwrap_or(&path);
-        let belt = belt::compile(scene, on)?;
+        let formulation = scene.belt.formulation;
+        let (belt, rigid) = match formulation {
+            Formulation::NodeKelvinVoigt => (belt::compile(scene, on)?, None),
+            Formulation::RigidBody => {
+                let (belt, rigid) = belt_rigid::compile(scene, on)?;
+                (belt, Some(rigid))
+            }
+        };
         let mut pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
         // Validated whole; a load of zero mass is then dropped (it would only cost a stage
@@ -161,7 +184,7 @@ impl Model {
             .any(|p| p.control.is_some() || p.motor.as_ref().is_some_and(|m| m.coupling.is_some()));
         let stages = stages::select(scene, &pulleys, &idlers, &loads);
         // With loads the node masses change during the run: never read them as uniform.
-        let uniform = if loads.is_empty() {
+        let uniform = if loads.is_empty() && rigid.is_none() {
             forces::Uniform::of(
                 &belt.axial_stiffness,
                 &belt.axial_damping,
@@ -189,8 +212,11 @@ impl Model {
             bending_stiffness: belt.bending_stiffness,
             uniform,
             tension_only: scene.belt.tension_only,
+            wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
+            formulation,
             gravity: scene.gravity,
-            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()),
+            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len())
+                .with_bodies(if rigid.is_some() { belt.nodes } else { 0 }),
             pulleys,
             idlers,
             loads,
@@ -198,9 +224,14 @@ impl Model {
             placement,
             initial_positions: belt.initial_positions,
             initial_motion: belt.motion,
+            body_inertia: rigid.as_ref().map_or(Vec::new(), |r| r.inertia.clone()),
+            torsional_damping: rigid
+                .as_ref()
+                .map_or(Vec::new(), |r| r.torsional_damping.clone()),
+            initial_angles: rigid.map_or(Vec::new(), |r| r.angles),
             stages,
             has_drive_memory,
-            integrator: Integrator::CentralDifference,
+            integrator: Integrator::of(scene),
             dt: 0.0,
             dt_limit: 0.0,
             dt_cause: String::new(),
@@ -229,6 +260,12 @@ impl Model {
         model.node_stiffness_bound = stable.node_stiffness_bound;
         model.takeup_stiffness_bound = stable.takeup_stiffness_bound;
         Ok(model)
+    }
+
+    /// True for the rigid-body belt ([`Formulation::RigidBody`]).
+    #[inline]
+    pub fn is_rigid(&self) -> bool {
+        self.formulation == Formulation::RigidBody
     }
 
     /// True if the compiled model runs `stage`.

@@ -1,5 +1,6 @@
 //! Compiled pulleys and their takeups, drives and brakes.
 
+use crate::contact::nonlinear::NonlinearContact;
 use crate::drives::controller::ControlModel;
 use crate::drives::holdback::Holdback;
 use crate::drives::motor::MotorModel;
@@ -45,6 +46,9 @@ pub struct PulleyModel {
     pub contact_stiffness: f64,
     /// Contact damping, N·s/m (the scene's absolute value, or 2ζ√(k·m) from its ratio).
     pub contact_damping: f64,
+    /// Kubas's nonlinear contact law (eq. 4–11), replacing `contact_stiffness` and
+    /// `contact_damping`, if the scene gives one.
+    pub nonlinear: Option<NonlinearContact>,
     /// Friction model.
     pub friction: FrictionModel,
     /// Takeup, if the pulley translates.
@@ -66,6 +70,20 @@ pub struct PulleyModel {
 }
 
 impl PulleyModel {
+    /// The stiffest contact (N/m) and its damping (N·s/m) a belt point can meet on this
+    /// pulley, every stiffness times `scale`: the linear law's, or the nonlinear law's
+    /// tangent 2c₁p + c₂ at p_max (where its damping is fully in) with its full damping b.
+    #[inline]
+    pub fn contact_bound(&self, scale: f64) -> (f64, f64) {
+        match &self.nonlinear {
+            None => (self.contact_stiffness * scale, self.contact_damping),
+            Some(law) => (
+                law.scaled(scale).stiffness_at(law.damping_depth),
+                law.damping,
+            ),
+        }
+    }
+
     /// The speed-controlled drive's hold for the step from `time` to `time + dt` (s): the
     /// pulley speed at the mid-step, where central differences place it, is the curve's
     /// belt speed there over the radius, ω(t + Δt/2) = v(t + Δt/2)/r, up to `max_torque`.
@@ -91,6 +109,7 @@ impl PulleyModel {
 /// reaches one element beyond the radius.
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
     let element_mass = scene.belt.mass_per_length * l0;
+    let wrap = scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     let stop_time = scene.stop_time().unwrap_or(f64::INFINITY);
     scene
         .pulleys
@@ -120,12 +139,16 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 inertia: p.polar_inertia() + drive_inertia,
                 bearing_damping: p.bearing_damping,
                 contact_stiffness: p.contact_stiffness,
-                contact_damping: crate::scene::contact_damping(
-                    p.contact_damping,
-                    p.contact_damping_ratio,
-                    p.contact_stiffness,
-                    element_mass,
-                ),
+                contact_damping: match &p.nonlinear_contact {
+                    Some(law) => law.damping,
+                    None => crate::scene::contact_damping(
+                        p.contact_damping,
+                        p.contact_damping_ratio,
+                        p.contact_stiffness,
+                        element_mass,
+                    ),
+                },
+                nonlinear: p.nonlinear_contact,
                 friction: p.friction,
                 takeup: p.takeup.as_ref().map(|t| {
                     let dir = Vector2::new(t.direction[0], t.direction[1]);
@@ -150,7 +173,9 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<PulleyModel> {
                 drive: p.drive.clone(),
                 brake: p.brake.clone(),
                 holdback: p.holdback.as_ref().map(Holdback::compile),
-                window_margin: l0,
+                // Wrap contact: one and a half elements, so that an element that can reach the
+                // circle has both nodes in the window, stretched or not.
+                window_margin: if wrap { 1.5 * l0 } else { l0 },
                 control: None,
                 follow: None,
                 motor,

@@ -35,7 +35,7 @@ impl Model {
         let k_contact = self
             .pulleys
             .iter()
-            .map(|p| (p.contact_stiffness * contact_scale, p.contact_damping))
+            .map(|p| p.contact_bound(contact_scale))
             .chain(
                 self.idlers
                     .iter()
@@ -51,7 +51,14 @@ impl Model {
             let k_ax = 2.0 * (self.axial_stiffness[prev] + self.axial_stiffness[i]);
             let c_ax = 2.0 * (self.axial_damping[prev] + self.axial_damping[i]);
             let l = 0.5 * (self.rest_length[prev] + self.rest_length[i]);
-            let k_bend = if self.has_stage(Stage::Bending) {
+            let (k_ax, c_ax, k_bend) = if self.is_rigid() {
+                rigid_body_bounds(self, i, k_ax, c_ax)
+            } else {
+                (k_ax, c_ax, 0.0)
+            };
+            let k_bend = if self.is_rigid() {
+                k_bend
+            } else if self.has_stage(Stage::Bending) {
                 (self.bending_stiffness[prev]
                     + 4.0 * self.bending_stiffness[i]
                     + self.bending_stiffness[next])
@@ -75,7 +82,13 @@ impl Model {
                 let dominant = if k_contact.0 >= k_ax.max(k_bend) {
                     "contact"
                 } else if k_ax >= k_bend {
-                    "axial"
+                    if self.is_rigid() {
+                        "translational SDE"
+                    } else {
+                        "axial"
+                    }
+                } else if self.is_rigid() {
+                    "torsional SDE"
                 } else {
                     "bending"
                 };
@@ -86,14 +99,14 @@ impl Model {
         }
         let mut takeup_stiffness_bound = vec![0.0; self.pulleys.len()];
         for (j, p) in self.pulleys.iter().enumerate() {
-            let contact_stiffness = p.contact_stiffness * contact_scale;
+            let (contact_stiffness, contact_damping) = p.contact_bound(contact_scale);
             if let (Some(t), true) = (&p.takeup, contact_stiffness > 0.0) {
                 let wrap = self.path.wrap_angles[j];
                 let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
                 let k = nodes_on_wrap * contact_stiffness;
                 takeup_stiffness_bound[j] = k;
                 let omega = (k / t.moving_mass).sqrt();
-                let c = nodes_on_wrap * p.contact_damping;
+                let c = nodes_on_wrap * contact_damping;
                 let zeta = c / (2.0 * t.moving_mass * omega);
                 let dt = 2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta);
                 if dt < limit {
@@ -163,4 +176,23 @@ impl Model {
             takeup_stiffness_bound,
         })
     }
+}
+
+/// The rigid-body belt's bounds at body `i`, as stiffness and damping on its translation:
+/// from the node belt's axial row 2(k_{i−1} + k_i) (`k_ax`, and `c_ax` for the dampers),
+/// (translational, damping, torsional).
+///
+/// A translational SDE couples the ends of two bodies, each end moving with the body's
+/// translation and its rotation times l/2. In mass-weighted coordinates one SDE is k·BᵀB
+/// with B = (1/√m)[I, √3·n₁, −I, −√3·n₂] (I = m·l²/12 makes the lever (l/2)/√I = √3/√m),
+/// whose largest eigenvalue is k·|B|² ≤ 8k/m: four times the node belt's 2k/m, so the
+/// translational row is 4× the node row. A torsional SDE c_φ on two bodies of inertia I
+/// adds 2c_φ/I per joint, 24·c_φ/l² per joint as a stiffness on the translation (×m).
+fn rigid_body_bounds(m: &Model, i: usize, k_ax: f64, c_ax: f64) -> (f64, f64, f64) {
+    let n = m.nodes;
+    let prev = (i + n - 1) % n;
+    let l = m.rest_length[i];
+    let k_tor = 24.0 * (m.bending_stiffness[prev] + m.bending_stiffness[i]) / (l * l);
+    let c_tor = 24.0 * (m.torsional_damping[prev] + m.torsional_damping[i]) / (l * l);
+    (4.0 * k_ax, 4.0 * c_ax + c_tor, k_tor)
 }

@@ -18,6 +18,9 @@ pub enum Stage {
     AxialDamped,
     /// Rotational bending springs (thesis eq. 4.47, signs re-derived).
     Bending,
+    /// The rigid-body belt's spring-dampers between bodies and the body weights (Kubas
+    /// eq. 20–23), replacing `Axial`/`AxialDamped` and `Bending`.
+    RigidChain,
     /// Nodal penalty contact with pulleys (thesis eq. 4.70–4.75).
     PulleyContact,
     /// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102).
@@ -58,6 +61,7 @@ impl Stage {
             Stage::Axial => "axial",
             Stage::AxialDamped => "axial_damped",
             Stage::Bending => "bending",
+            Stage::RigidChain => "rigid_chain",
             Stage::PulleyContact => "pulley_contact",
             Stage::IdlerContact => "idler_contact",
             Stage::RunningResistance => "running_resistance",
@@ -86,13 +90,19 @@ pub(super) fn select(
     if !loads.is_empty() {
         stages.push(Stage::Loads);
     }
-    stages.push(if scene.belt.damping_ratio > 0.0 {
-        Stage::AxialDamped
-    } else {
-        Stage::Axial
-    });
-    if scene.belt.bending_stiffness > 0.0 {
-        stages.push(Stage::Bending);
+    match scene.belt.formulation {
+        crate::scene::Formulation::NodeKelvinVoigt => {
+            let voigt = scene.belt.damping_time.is_some_and(|t| t > 0.0);
+            stages.push(if scene.belt.damping_ratio > 0.0 || voigt {
+                Stage::AxialDamped
+            } else {
+                Stage::Axial
+            });
+            if scene.belt.bending_stiffness > 0.0 {
+                stages.push(Stage::Bending);
+            }
+        }
+        crate::scene::Formulation::RigidBody => stages.push(Stage::RigidChain),
     }
     if pulleys.iter().any(|p| p.contact_stiffness > 0.0) {
         stages.push(Stage::PulleyContact);

@@ -1,164 +1,33 @@
 //! Python bindings: the only module that knows PyO3. Thin wrappers that convert arguments,
 //! call the core, and convert results and errors back. No panic crosses into Python.
+//!
+//! Over ~600 lines on purpose: PyO3 takes one `#[pymethods]` block per class (more need
+//! its `multiple-pymethods` feature and the `inventory` crate), and the Simulation class's
+//! block is most of this file; errors and Ctrl-C are in call.rs, module functions in
+//! functions.rs.
 
+mod call;
+mod functions;
 mod scene;
 mod shared;
 
-use crate::error::{BeltError, BeltResult};
+use crate::error::BeltError;
 use crate::record::{Channels, Recording, ENERGY_COLUMNS};
 use crate::simulation::Simulation;
 use crate::{Relaxation, StabiliseOptions};
+use call::{
+    guarded, interruptible, interruptible_with_progress, to_py, BeltrsError, CheckpointError,
+    DivergenceError, SceneError, TimeStepError,
+};
+use functions::{
+    check_scene, check_scene_table, scene_defaults, start_curve_eval, unknown_key_rule,
+};
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::create_exception;
-use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use shared::{Guard, Shared};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, PoisonError};
-
-create_exception!(
-    _beltrs,
-    BeltrsError,
-    PyException,
-    "Base class of every beltrs error."
-);
-create_exception!(
-    _beltrs,
-    SceneError,
-    BeltrsError,
-    "A scene parameter is invalid; the message names the field, the value and the rule."
-);
-create_exception!(
-    _beltrs,
-    TimeStepError,
-    SceneError,
-    "The requested time step exceeds the explicit stability limit."
-);
-create_exception!(
-    _beltrs,
-    DivergenceError,
-    BeltrsError,
-    "The state became non-finite during a run; results recorded before are kept."
-);
-
-create_exception!(
-    _beltrs,
-    CheckpointError,
-    BeltrsError,
-    "A checkpoint cannot be written, read or resumed; the message names the file and the problem."
-);
-
-fn to_py(err: BeltError) -> PyErr {
-    let msg = err.to_string();
-    match err {
-        BeltError::InvalidParameter { .. } => SceneError::new_err(msg),
-        BeltError::TimeStepTooLarge { .. } => TimeStepError::new_err(msg),
-        BeltError::Diverged { .. } => DivergenceError::new_err(msg),
-        BeltError::Checkpoint { .. } => CheckpointError::new_err(msg),
-        BeltError::Usage(_) => BeltrsError::new_err(msg),
-        BeltError::Interrupted => {
-            pyo3::exceptions::PyKeyboardInterrupt::new_err("interrupted (beltrs)")
-        }
-    }
-}
-
-/// What an interruptible call ended with: the core's result, and the exception a Python
-/// signal handler raised while it ran (usually `KeyboardInterrupt`), if any.
-struct Interruptible<T> {
-    result: BeltResult<T>,
-    signal: Option<PyErr>,
-}
-
-impl<T> Interruptible<T> {
-    /// The result, with a caught signal taking precedence (re-raised as Python raised it).
-    fn into_py(self) -> PyResult<T> {
-        match self.signal {
-            Some(e) => Err(e),
-            None => self.result.map_err(to_py),
-        }
-    }
-}
-
-/// Run `f` without the GIL, with an interrupt hook that takes the GIL about every
-/// [`crate::interrupt::POLL_INTERVAL`] and runs Python's signal handlers: Ctrl-C (or any
-/// handler that raises) stops `f` at the next whole step or element.
-fn interruptible<T: Send>(
-    py: Python<'_>,
-    f: impl FnOnce() -> BeltResult<T> + Send,
-) -> Interruptible<T> {
-    interruptible_with_progress(py, None, f)
-}
-
-/// [`interruptible`], also calling `progress(done)` at each poll with what the core last
-/// reported ([`crate::interrupt::report`]); an exception from it is ignored, except a
-/// `KeyboardInterrupt`, which stops the call like one from the signal check.
-fn interruptible_with_progress<T: Send>(
-    py: Python<'_>,
-    progress: Option<Py<PyAny>>,
-    f: impl FnOnce() -> BeltResult<T> + Send,
-) -> Interruptible<T> {
-    let caught: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
-    let hook_caught = caught.clone();
-    let hook = move || {
-        Python::attach(|py| {
-            // A Ctrl-C may land in the callback's Python code: it must not be lost.
-            let shown = match &progress {
-                Some(callback) => callback.call1(py, (crate::interrupt::reported(),)).err(),
-                None => None,
-            };
-            if let Some(e) = shown {
-                if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
-                    return true;
-                }
-            }
-            match py.check_signals() {
-                Ok(()) => false,
-                Err(e) => {
-                    *hook_caught.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
-                    true
-                }
-            }
-        })
-    };
-    let result = py.detach(move || {
-        match catch_unwind(AssertUnwindSafe(|| crate::interrupt::with_hook(hook, f))) {
-            Ok(r) => Ok(r),
-            Err(payload) => Err(panic_message(payload)),
-        }
-    });
-    let signal = caught.lock().unwrap_or_else(PoisonError::into_inner).take();
-    match result {
-        Ok(result) => Interruptible { result, signal },
-        Err(what) => Interruptible {
-            result: Err(BeltError::Usage(what.clone())),
-            signal: Some(internal_error(&what)),
-        },
-    }
-}
-
-fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
-    payload
-        .downcast_ref::<String>()
-        .cloned()
-        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-        .unwrap_or_else(|| "unknown panic".into())
-}
-
-fn internal_error(what: &str) -> PyErr {
-    BeltrsError::new_err(format!("internal error in beltrs (please report): {what}"))
-}
-
-/// Run `f`, turning a Rust panic into a `BeltrsError` instead of crossing into Python.
-fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
-    match catch_unwind(AssertUnwindSafe(f)) {
-        Ok(r) => r,
-        Err(payload) => Err(internal_error(&panic_message(payload))),
-    }
-}
 
 fn array<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
     let a = PyArray1::from_slice(py, data);
@@ -268,6 +137,19 @@ impl PySimulation {
     #[getter]
     fn step_count(&self, py: Python<'_>) -> u64 {
         self.lock(py).state.step
+    }
+
+    /// Steps the adaptive integrator (RKF45) accepted since the model was compiled.
+    #[getter]
+    fn accepted_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.accepted_steps
+    }
+
+    /// Steps the adaptive integrator (RKF45) rejected and retried since the model was
+    /// compiled.
+    #[getter]
+    fn rejected_steps(&self, py: Python<'_>) -> u64 {
+        self.lock(py).state.rejected_steps
     }
 
     /// Length of the initial belt path, m.
@@ -708,54 +590,6 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// A one-dimensional float array handed to Python.
-type Array1<'py> = Bound<'py, PyArray1<f64>>;
-
-/// Belt speed (m/s) and acceleration (m/s²) of a starting curve (given in the dict form of
-/// `beltrs.StartCurve.to_dict()`) at each of `times` (s): two arrays.
-#[pyfunction]
-fn start_curve_eval<'py>(
-    py: Python<'py>,
-    curve: &Bound<'py, PyAny>,
-    times: Vec<f64>,
-) -> PyResult<(Array1<'py>, Array1<'py>)> {
-    guarded(|| {
-        let curve = scene::start_curve_from_py(curve, "start_curve").map_err(to_py)?;
-        let (speed, accel): (Vec<f64>, Vec<f64>) = times.iter().map(|&t| curve.evaluate(t)).unzip();
-        Ok((PyArray1::from_vec(py, speed), PyArray1::from_vec(py, accel)))
-    })
-}
-
-/// Check a scene in dict form against the scene schema (unknown keys, types), raising
-/// `SceneError` naming the full path, the value and the rule. Values are checked when the
-/// scene compiles.
-#[pyfunction]
-fn check_scene(scene: &Bound<'_, PyAny>) -> PyResult<()> {
-    guarded(|| scene::scene_from_py(scene).map(|_| ()).map_err(to_py))
-}
-
-/// Check `value` as the scene table `table` (`"start_curve"`, `"pulley"`, ...), naming paths
-/// from `path`; raises `SceneError`.
-#[pyfunction]
-fn check_scene_table(table: &str, value: &Bound<'_, PyAny>, path: &str) -> PyResult<()> {
-    guarded(|| scene::check_table(table, value, path).map_err(to_py))
-}
-
-/// The rule text for an unknown key `key` among `known`: "unknown key, did you mean 'x'?
-/// (known keys here: ...)", the suggestion being the scene reader's (difflib's choice).
-#[pyfunction]
-fn unknown_key_rule(key: &str, known: Vec<String>) -> String {
-    crate::suggest::unknown_key_rule(key, known.iter().map(String::as_str))
-}
-
-/// The defaults of every table of the scene format (`"scene"`, `"belt"`, `"pulley"`,
-/// `"friction"`, `"takeup"`, `"drive"`, `"start_curve"`, `"brake"`, `"idler"`, `"load"`,
-/// `"solver"`, `"recording"`), each a dict of every key; required keys hold None.
-#[pyfunction]
-fn scene_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    guarded(|| scene::defaults(py))
-}
-
 /// The compiled extension module.
 #[pymodule]
 fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -763,6 +597,7 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(start_curve_eval, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::case_k_scene, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
     m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;

@@ -4,6 +4,7 @@
 //! through the same serde types (`pythonize`), and so do the schema's defaults, which the
 //! dataclasses of `beltrs.scene` take as theirs. No key of the format is named here.
 
+use crate::contact::nonlinear::NonlinearContact;
 use crate::drives::controller::SpeedController;
 use crate::drives::coupling::FluidCoupling;
 use crate::drives::motor::Motor;
@@ -11,8 +12,8 @@ use crate::drives::sharing::TorqueFollow;
 use crate::error::{BeltError, BeltResult};
 use crate::scene::read::{from_value, Value, MAX_DEPTH};
 use crate::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, InitialState, LoadSpec, PulleySpec,
-    RecordingParams, Scene, SolverParams, TakeupSpec,
+    BeltParams, BrakeSpec, DriveSpec, FrictionKeys, HoldbackSpec, IdlerSpec, InitialState,
+    LoadSpec, PulleySpec, RecordingParams, Scene, SolverParams, TakeupSpec,
 };
 use crate::start_curve::StartCurve;
 use pyo3::prelude::*;
@@ -186,6 +187,7 @@ pub fn check_table(table: &str, obj: &Bound<'_, PyAny>, path: &str) -> BeltResul
         "belt" => read::<BeltParams>(obj, path).map(drop),
         "pulley" => read::<PulleySpec>(obj, path).map(drop),
         "friction" => read::<FrictionKeys>(obj, path).map(drop),
+        "nonlinear_contact" => read::<NonlinearContact>(obj, path).map(drop),
         "takeup" => read::<TakeupSpec>(obj, path).map(drop),
         "drive" => read::<DriveSpec>(obj, path).map(drop),
         "start_curve" => read::<StartCurve>(obj, path).map(drop),
@@ -238,6 +240,10 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("belt", to_py(py, &BeltParams::default())?)?;
     d.set_item("pulley", to_py(py, &PulleySpec::default())?)?;
     d.set_item("friction", to_py(py, &FrictionKeys::default())?)?;
+    d.set_item(
+        "nonlinear_contact",
+        to_py(py, &NonlinearContact::default())?,
+    )?;
     d.set_item("takeup", to_py(py, &TakeupSpec::default())?)?;
     d.set_item("drive", to_py(py, &DriveSpec::default())?)?;
     let curve = to_py(py, &StartCurve::default())?;
@@ -263,4 +269,15 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("recording", to_py(py, &RecordingParams::default())?)?;
     d.set_item("initial", to_py(py, &InitialState::default())?)?;
     Ok(d)
+}
+
+/// Case K (Kubas 2014) as a scene dict (`crate::presets::case_k`): the drive torque's
+/// ramp time (s) and the belt's pre-strain on its path (dimensionless).
+#[pyfunction]
+pub fn case_k_scene(
+    py: Python<'_>,
+    ramp_time: f64,
+    preload_strain: f64,
+) -> PyResult<Bound<'_, PyAny>> {
+    super::guarded(|| to_py(py, &crate::presets::case_k(ramp_time, preload_strain)))
 }

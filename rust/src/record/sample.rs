@@ -11,17 +11,24 @@ impl Simulation {
     /// accelerations to centre the half-step velocities on t).
     pub(crate) fn energies(&self) -> Energies {
         let (m, s, sc) = (&self.model, &self.state, &self.scratch);
-        let half = 0.5 * m.dt;
+        let half = self.velocity_lag();
         let mut e = Energies {
             drive_work: s.drive_work,
             ..Default::default()
         };
         let n = m.nodes;
+        let rigid = m.is_rigid();
+        if rigid {
+            (e.strain, e.bending) = crate::belt::rigid::stage::chain_energy(m, s);
+        }
         for i in 0..n {
             let v = s.velocity[i] + sc.force[i] * (half * self.inertia.inv_mass[i]);
             e.kinetic += 0.5 * s.node_mass[i] * v.norm_squared();
             if m.gravity > 0.0 {
                 e.gravity += s.node_mass[i] * m.gravity * s.position[i].y;
+            }
+            if rigid {
+                continue;
             }
             let j = (i + 1) % n;
             let stretch = (s.position[j] - s.position[i]).norm() - m.rest_length[i];
@@ -45,8 +52,31 @@ impl Simulation {
             if let Some(t) = &p.takeup {
                 e.gravity -= t.pull * s.takeup_travel[j];
             }
-            for &d in &sc.contacts[j].penetration {
-                e.contact += 0.5 * p.contact_stiffness * d * d;
+            match &p.nonlinear {
+                None => {
+                    for &d in &sc.contacts[j].penetration {
+                        e.contact += 0.5 * p.contact_stiffness * d * d;
+                    }
+                }
+                Some(law) => {
+                    for &d in &sc.contacts[j].penetration {
+                        e.contact += law.energy(d);
+                    }
+                }
+            }
+            // Elements wrapped on the pulley store their energy at their path length, not
+            // their chord's (contact::wrap).
+            for &(i, length) in &sc.contacts[j].wrapped {
+                let chord = (s.position[(i + 1) % n] - s.position[i]).norm() - m.rest_length[i];
+                let path = length - m.rest_length[i];
+                let energy = |x: f64| {
+                    if m.tension_only && x < 0.0 {
+                        0.0
+                    } else {
+                        0.5 * m.axial_stiffness[i] * x * x
+                    }
+                };
+                e.strain += energy(path) - energy(chord);
             }
         }
         // Every part pressing on an idler roll, as the force counts them (not only the
@@ -60,9 +90,9 @@ impl Simulation {
     /// Append the current state to the recording; call right after an evaluation.
     pub(crate) fn sample(&mut self) {
         let energies = self.recording.channels.energy.then(|| self.energies());
+        let half = self.velocity_lag();
         let (m, s, sc) = (&self.model, &self.state, &self.scratch);
         let r = &mut self.recording;
-        let half = 0.5 * m.dt;
         // The speed of a rigid degree of freedom at t (centred from the half step).
         let speed =
             |d: Rigid| s.rigid_speed(d) + half * sc.rigid_force(m, d) / self.inertia.rigid(m, d);

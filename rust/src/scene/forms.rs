@@ -5,7 +5,10 @@
 //! [`rule`] so that they name the key the user wrote.
 
 use super::read::rule;
-use super::{BrakeSpec, DriveSpec, Formulation, FrictionModel, Table, TakeupKind, Wrap};
+use super::{
+    BrakeSpec, DriveSpec, Formulation, FrictionModel, IntegratorKind, PulleyContact, Table,
+    TakeupKind, Wrap,
+};
 use crate::drives::controller::SpeedController;
 use crate::drives::motor::Motor;
 use crate::drives::sharing::TorqueFollow;
@@ -82,13 +85,43 @@ macro_rules! named_serde {
 }
 
 impl Named for Formulation {
-    const NAMES: &'static [(Self, &'static str)] =
-        &[(Formulation::NodeKelvinVoigt, "node_kelvin_voigt")];
-    fn unknown(_: &str) -> String {
-        "unknown belt formulation (known: \"node_kelvin_voigt\")".into()
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (Formulation::NodeKelvinVoigt, "node_kelvin_voigt"),
+        (Formulation::RigidBody, "rigid_body"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name(
+            "belt formulation",
+            name,
+            &["node_kelvin_voigt", "rigid_body"],
+        )
     }
 }
 named_serde!(Formulation);
+
+impl Named for PulleyContact {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (PulleyContact::Nodes, "nodes"),
+        (PulleyContact::Wrap, "wrap"),
+    ];
+    fn expected() -> String {
+        "\"nodes\" or \"wrap\"".into()
+    }
+    fn unknown(_: &str) -> String {
+        format!("unknown pulley contact (known: {})", Self::expected())
+    }
+}
+named_serde!(PulleyContact);
+impl Named for IntegratorKind {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (IntegratorKind::CentralDifference, "central_difference"),
+        (IntegratorKind::Rkf45, "rkf45"),
+    ];
+    fn unknown(name: &str) -> String {
+        unknown_name("integrator", name, &["central_difference", "rkf45"])
+    }
+}
+named_serde!(IntegratorKind);
 
 impl Named for Wrap {
     const NAMES: &'static [(Self, &'static str)] =

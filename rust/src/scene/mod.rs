@@ -1,5 +1,10 @@
 //! Plain data describing a scene: belt, pulleys, idlers and solver settings.
 //!
+//! Over ~600 lines on purpose: this file is the scene format's top-level tables (belt,
+//! pulley, idler, drive, takeup, solver, recording), each with its defaults, in file order,
+//! so that the schema reads as a scene file does; the rules (validate.rs, rules.rs), the
+//! named choices (forms.rs) and the stops and design-state tables are already apart.
+//!
 //! Everything here is SI: metres, kilograms, seconds, newtons, radians. Each parameter
 //! struct implements [`Default`] with the documented defaults, so a scene can be built as
 //! `PulleySpec { radius: 0.5, ..Default::default() }`. Nothing here is checked until
@@ -22,12 +27,16 @@ use serde::{Deserialize, Serialize};
 mod forms;
 mod initial;
 pub mod read;
+mod rules;
 mod stops;
 mod validate;
 
 pub(crate) use forms::required;
 pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
 pub use initial::InitialState;
+pub use rules::{
+    Formulation, IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE,
+};
 pub use stops::{HoldbackSpec, TakeupKind};
 pub(crate) use validate::check_finite;
 
@@ -36,22 +45,17 @@ pub(crate) use validate::check_finite;
 /// (e.g. a radius in millimetres), and would exhaust memory rather than fail cleanly.
 pub const MAX_ELEMENTS: usize = 1_000_000;
 
-/// Which discrete belt model to use.
+/// How the belt meets the pulleys (`belt.pulley_contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Formulation {
-    /// Hustrulid (1993): lumped node masses joined by Kelvin-Voigt axial elements and
-    /// rotational bending springs (thesis eq. 4.1–4.60).
+pub enum PulleyContact {
+    /// Nodal penalty contact (thesis eq. 4.70–4.75): the belt round a pulley is a polygon of
+    /// chords whose nodes touch it; nodes placed at equal chords.
     #[default]
-    NodeKelvinVoigt,
-}
-
-impl Formulation {
-    /// Name used in scene files and in Python.
-    pub fn name(self) -> &'static str {
-        match self {
-            Formulation::NodeKelvinVoigt => "node_kelvin_voigt",
-        }
-    }
+    Nodes,
+    /// Wrap contact (`contact::wrap`, docs/wrap-contact.md): an element on a pulley is
+    /// measured along its path round it (tangents and arc), so the strand leaves on the
+    /// tangent without chordal ripple; nodes placed at equal arc length.
+    Wrap,
 }
 
 /// Belt properties (the `[belt]` table).
@@ -69,6 +73,12 @@ pub struct BeltParams {
     /// Axial damping as a fraction of the critical damping of one element (thesis eq. 4.3),
     /// dimensionless. Zero disables the damping term. Default 0.
     pub damping_ratio: f64,
+    /// Voigt damping of the belt material as a retardation time τ = η/E, s (Guo & Wang
+    /// 2020: σ = Eε + ηε̇): each element's (node belt) or spring-damper's (rigid-body belt)
+    /// damping is τ times its stiffness, b = τ·EA/l (and τ·EI/l for the rigid bodies'
+    /// torsional spring-dampers). Finite, ≥ 0; not with `damping_ratio` > 0. `None`: the
+    /// damping follows `damping_ratio`. Default `None`.
+    pub damping_time: Option<f64>,
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
@@ -90,6 +100,9 @@ pub struct BeltParams {
     /// for pre-strained elastic drive belts (the belt-drive literature's benchmarks are
     /// pre-strained 5.26 %). Default 0.1 (10 %).
     pub max_placement_strain: f64,
+    /// How the belt meets the pulleys: [`PulleyContact::Nodes`] (thesis, default) or
+    /// [`PulleyContact::Wrap`] (no chordal ripple; docs/wrap-contact.md).
+    pub pulley_contact: PulleyContact,
 }
 
 impl Default for BeltParams {
@@ -100,11 +113,13 @@ impl Default for BeltParams {
             mass_per_length: 100.0,
             bending_stiffness: 0.0,
             damping_ratio: 0.0,
+            damping_time: None,
             length: None,
             elements: None,
             max_element_angle: std::f64::consts::PI / 6.0,
             tension_only: false,
             max_placement_strain: DEFAULT_MAX_PLACEMENT_STRAIN,
+            pulley_contact: PulleyContact::Nodes,
         }
     }
 }
@@ -433,6 +448,10 @@ pub struct PulleySpec {
     pub drive: Option<DriveSpec>,
     /// Brake, if any. Default `None`.
     pub brake: Option<BrakeSpec>,
+    /// Kubas's damped nonlinear contact law (eq. 4–11) in place of the linear penalty
+    /// (`contact_stiffness`, `contact_damping`): N = c₁p² + c₂p + δ(p)·b·ṗ, never pulling.
+    /// `None`: the linear law. Default `None`.
+    pub nonlinear_contact: Option<crate::contact::nonlinear::NonlinearContact>,
     /// Holdback (a one-way clutch that stops the pulley turning backwards), if any.
     /// Default `None`.
     pub holdback: Option<HoldbackSpec>,
@@ -455,6 +474,7 @@ impl Default for PulleySpec {
             takeup: None,
             drive: None,
             brake: None,
+            nonlinear_contact: None,
             holdback: None,
         }
     }
@@ -561,6 +581,18 @@ pub struct SolverParams {
     /// Fraction of the stability limit used when `time_step` is `None`, in (0, 1].
     /// Default 0.5 (the thesis ran at half its limit).
     pub time_step_fraction: f64,
+    /// Time integrator: `"central_difference"` (default) or `"rkf45"` (adaptive, with the
+    /// tolerances below; effects solved for a fixed step, stick-force friction, speed
+    /// holds, brakes, running resistance and loads, are refused under it).
+    pub integrator: IntegratorKind,
+    /// RKF45's relative tolerance on each generalized coordinate, speed and friction
+    /// memory per step, dimensionless, > 0. Default 1e-8 ([`DEFAULT_RELATIVE_TOLERANCE`]:
+    /// positions are of the scene's size, deformations 10⁻³–10⁻⁵ of it). Used only with
+    /// `"rkf45"`.
+    pub relative_tolerance: f64,
+    /// RKF45's absolute tolerance per step, in each component's SI unit (m, rad, m/s,
+    /// rad/s), ≥ 0. Default 1e-11. Used only with `"rkf45"`.
+    pub absolute_tolerance: f64,
 }
 
 impl Default for SolverParams {
@@ -568,6 +600,9 @@ impl Default for SolverParams {
         SolverParams {
             time_step: None,
             time_step_fraction: 0.5,
+            integrator: IntegratorKind::CentralDifference,
+            relative_tolerance: DEFAULT_RELATIVE_TOLERANCE,
+            absolute_tolerance: DEFAULT_ABSOLUTE_TOLERANCE,
         }
     }
 }

@@ -1,3 +1,6 @@
+//! Over ~600 lines on purpose (by a few): one reader walks the whole tree, with its error
+//! wording and did-you-mean in one place, so every path reports alike.
+//!
 //! The strict reader of the scene schema: any tree of plain values (a Python dict, a parsed
 //! TOML file) becomes the serde types of [`super`], or an error naming the full path, the
 //! value and the rule, e.g. `pulleys[0].radious = 'radious': unknown key, did you mean
@@ -460,6 +463,23 @@ impl<'de> Deserializer<'de> for De<'_, '_> {
         }
     }
 
+    fn deserialize_struct<V: Visitor<'de>>(
+        self,
+        _name: &'static str,
+        _fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, ReadError> {
+        match self.value {
+            // serde's derived structs also take a list of their fields in order, so `belt = []`
+            // read as every default; a scene table is written with its keys.
+            Value::Seq(_) => Err(
+                <ReadError as de::Error>::invalid_type(Unexpected::Seq, &visitor)
+                    .at(self.path, self.value),
+            ),
+            _ => self.deserialize_any(visitor),
+        }
+    }
+
     fn deserialize_newtype_struct<V: Visitor<'de>>(
         self,
         _name: &'static str,
@@ -484,7 +504,7 @@ impl<'de> Deserializer<'de> for De<'_, '_> {
 
     serde::forward_to_deserialize_any! {
         bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
-        unit unit_struct seq tuple_struct map struct identifier ignored_any
+        unit unit_struct seq tuple_struct map identifier ignored_any
     }
 }
 

@@ -242,6 +242,7 @@ impl Scene {
                 ));
             }
         }
+        self.validate_choices()?;
         let b = &self.belt;
         check_positive("belt.axial_stiffness", b.axial_stiffness)?;
         check_positive("belt.mass_per_length", b.mass_per_length)?;

@@ -4,8 +4,13 @@
 //! Kelvin–Voigt spring-dampers (SDEs, eq. 20–23).
 //!
 //! - [`sdes`]: the SDE forces and torques between neighbouring bodies.
+//! - [`stage`]: the stage the pipeline calls (`Stage::RigidChain`) and the chain's energy.
+//!
+//! The same machinery is Guo & Wang's (2020) rigid finite element belt: c_x = EA/Δl,
+//! c_φ = EI/Δl (`crate::model`'s `belt_rigid` part, `docs/kubas.md`).
 
 pub mod sdes;
+pub mod stage;
 
 /// Mass moment of inertia of a thin homogeneous link about its mass centre, mᵢlᵢ²/12
 /// (Kubas eq. 2), kg·m².

@@ -98,6 +98,17 @@ fn spin(omega: f64, r: V2) -> V2 {
 #[inline]
 pub fn wrap_angle(phi: f64) -> f64 {
     use std::f64::consts::{PI, TAU};
+    // Neighbouring bodies' angles differ by little (or by a whole turn at the joint where
+    // the initial angles wrapped): no division and rounding then.
+    if phi > -PI && phi <= PI {
+        return phi;
+    }
+    if phi > PI && phi <= 3.0 * PI {
+        return phi - TAU;
+    }
+    if phi > -3.0 * PI && phi <= -PI {
+        return phi + TAU;
+    }
     let w = phi - TAU * (phi / TAU).round();
     if w <= -PI {
         w + TAU
@@ -109,8 +120,13 @@ pub fn wrap_angle(phi: f64) -> f64 {
 /// Loads of the SDEs between `left` (body i−1) and `right` (body i), Kubas eq. 20–23.
 #[inline]
 pub fn joint(left: &LinkState, right: &LinkState, p: &SdeParams) -> JointLoad {
-    let hl = left.half_vector();
-    let hr = right.half_vector();
+    joint_with(left, left.half_vector(), right, right.half_vector(), p)
+}
+
+/// [`joint`] with the bodies' half-length vectors `hl`, `hr` (l′ of eq. 22) given, so that
+/// a chain computes each body's once.
+#[inline]
+pub fn joint_with(left: &LinkState, hl: V2, right: &LinkState, hr: V2, p: &SdeParams) -> JointLoad {
     let d = (right.position - hr) - (left.position + hl);
     let d_dot = (right.velocity - spin(right.angular_velocity, hr))
         - (left.velocity + spin(left.angular_velocity, hl));

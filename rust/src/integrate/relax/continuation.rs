@@ -55,7 +55,7 @@ impl Simulation {
         let stiffest_contact = m
             .pulleys
             .iter()
-            .map(|p| p.contact_stiffness)
+            .map(|p| p.contact_bound(1.0).0)
             .chain(m.idlers.iter().map(|d| d.contact_stiffness))
             .fold(0.0, f64::max);
         let stiffest_element = m

@@ -110,7 +110,7 @@ impl Inertia {
             .pulleys
             .iter()
             .filter(|p| p.takeup.is_some())
-            .map(|p| p.contact_stiffness * contact_scale)
+            .map(|p| p.contact_bound(contact_scale).0)
             .fold(0.0, f64::max);
         let mass: Vec<f64> = stable
             .node_stiffness_bound
@@ -129,11 +129,17 @@ impl Inertia {
                 None => f64::INFINITY,
             })
             .collect();
+        // A rigid body's rotation keeps its body's ratio of inertia to mass, so that the
+        // coupled translation-rotation modes of a body sit where its translation does.
+        let body_inertia = (model.body_inertia.iter().enumerate())
+            .map(|(i, inertia)| inertia * mass[i] / model.mass[i])
+            .collect();
         Inertia {
             mass,
             same_inv_mass: crate::forces::all_same(&inv_mass),
             inv_mass,
             takeup_mass,
+            body_inertia,
             physical: false,
         }
     }
@@ -258,17 +264,24 @@ impl Simulation {
         let m = &self.model;
         let mut worst = sc.force.iter().map(|f| f.norm()).fold(0.0, f64::max);
         for &d in &m.dofs.rigid {
-            if let Rigid::Takeup(j) = d {
-                let force = sc.rigid_force(m, d);
-                // A takeup resting on a travel stop that it is pushed into is in balance:
-                // the stop takes the difference.
-                let on_stop = m.pulleys[j].takeup.as_ref().is_some_and(|t| {
-                    let x = self.state.takeup_travel[j];
-                    (x >= t.travel_max && force > 0.0) || (x <= t.travel_min && force < 0.0)
-                });
-                if !on_stop {
-                    worst = worst.max(force.abs());
+            match d {
+                Rigid::Takeup(j) => {
+                    let force = sc.rigid_force(m, d);
+                    // A takeup resting on a travel stop that it is pushed into is in balance:
+                    // the stop takes the difference.
+                    let on_stop = m.pulleys[j].takeup.as_ref().is_some_and(|t| {
+                        let x = self.state.takeup_travel[j];
+                        (x >= t.travel_max && force > 0.0) || (x <= t.travel_min && force < 0.0)
+                    });
+                    if !on_stop {
+                        worst = worst.max(force.abs());
+                    }
                 }
+                // A body torque as the pair of end forces that make it.
+                Rigid::Body(i) => {
+                    worst = worst.max(sc.rigid_force(m, d).abs() / m.rest_length[i]);
+                }
+                _ => {}
             }
         }
         let scale = sc

@@ -1,7 +1,7 @@
 //! Checkpoints: the whole simulation state and the scene it belongs to, in one file, so a
 //! run can stop and resume bit-for-bit.
 //!
-//! # Format (version 4; older versions are refused, naming their version)
+//! # Format (version 5; versions before 4 are refused, naming their version)
 //!
 //! All integers are little-endian; every `f64` of the state is stored as its raw IEEE-754
 //! bits (`f64::to_bits`), so reloading is exact, including −0, ±∞ and NaN payloads.
@@ -9,13 +9,15 @@
 //! | bytes | content |
 //! |---|---|
 //! | 0..8 | magic `BELTRSCK` |
-//! | 8..12 | format version, `u32` (4) |
+//! | 8..12 | format version, `u32` (5) |
 //! | 12..16 | reserved, `u32` (0) |
 //! | 16..24 | payload length L, `u64` |
 //! | 24..24+L | payload |
 //! | 24+L..28+L | CRC-32 (IEEE 802.3) of bytes 0..24+L, `u32` |
 //!
-//! The payload holds, in order: the engine version that wrote it (a string); the scene
+//! The payload holds, in order: the engine version that wrote it (a string); from version
+//! 5, the belt formulation and the integrator the state belongs to (their scene names, e.g.
+//! `rigid_body`, `rkf45`: checked against the compiled scene on load); the scene
 //! (every field of [`Scene`], so parameters changed during a run, e.g. a counterweight or a
 //! drive, are kept), as a byte string holding the serde form of the one scene schema
 //! ([`crate::scene`], the same keys as a scene file) in CBOR, whose floats keep every bit;
@@ -26,10 +28,16 @@
 //! the drive work, the node masses (belt and material) and each load's zone edges (start
 //! element, end element, start and end material coordinates), the memory of each
 //! pulley's drive (PI error integral, lagged torque, speed of a fluid-coupled motor; added
-//! within version 4, so a file that ends before it reads as zero memory), and the speed at
-//! which each pulley's deceleration brake began its ramp (added within version 4 after the
-//! drive memory; a file that ends before it reads as no ramp begun). Strings, byte strings and
-//! arrays are a `u64` length followed by the items.
+//! within version 4, so a version 4 file that ends before it reads as zero memory), the
+//! speed at which each pulley's deceleration brake began its ramp (added within version 4
+//! after the drive memory; a version 4 file that ends before it reads as no ramp begun);
+//! from version 5, the rigid belt bodies' angles and angular speeds (empty arrays for the
+//! node belt), the adaptive integrator's next step and its accepted and rejected step
+//! counts. Strings, byte strings and arrays are a `u64` length followed by the items.
+//!
+//! Version 5 added the formulation and integrator tags and the state of the rigid-body
+//! belt and of the adaptive integrator; version 4 files (node belt, central differences)
+//! are still read.
 //!
 //! Version 4 replaced the hand-written scene encodings of versions 1 to 3 (version 3 had
 //! added the contact damping options and the belt's placement limit to them) by the scene
@@ -43,21 +51,28 @@
 //! directory, which is flushed to disk (`fsync`) and then renamed over the target, so a
 //! crash leaves either the old checkpoint or the new one, never a partial file.
 
-use crate::drives::controller::DriveMemory;
+//!
+//! Files: this one holds the format (header, checksum, encode/decode, the checks on load);
+//! `codec.rs` the byte-level writer and reader of the payload (scene and state); `file.rs`
+//! the file side (atomic writes, safe reads).
+
+mod codec;
+mod file;
+
 use crate::error::{BeltError, BeltResult};
-use crate::loads::LoadEdges;
 use crate::model::Model;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
-use crate::state::{ContactWindow, State};
-use nalgebra::Vector2;
-use std::io::Write;
+use crate::state::State;
+use codec::{read_scene, read_state, write_scene, write_state, Reader, Writer};
+use file::read_file;
+pub use file::write_atomic;
 use std::path::Path;
 
 /// First eight bytes of every checkpoint file.
 pub const MAGIC: [u8; 8] = *b"BELTRSCK";
 /// Version of the format written by this build.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Oldest version this build reads. Version 4 stores the scene in its serde form; the
 /// hand-written scene encoding of versions 1 to 3 is no longer read (such a file is refused
 /// with its version: re-run from the scene file).
@@ -98,6 +113,8 @@ pub fn crc32(bytes: &[u8]) -> u32 {
 pub fn encode(sim: &Simulation) -> Vec<u8> {
     let mut w = Writer::default();
     w.str(env!("CARGO_PKG_VERSION"));
+    w.str(sim.model.formulation.name());
+    w.str(sim.model.integrator.name());
     write_scene(&mut w, &sim.model.scene);
     w.u64(sim.model.nodes as u64);
     w.f64(sim.model.dt);
@@ -175,6 +192,11 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         version,
     };
     let _writer_version = r.str("engine version")?;
+    let tags = if version >= 5 {
+        Some((r.str("formulation")?, r.str("integrator")?))
+    } else {
+        None
+    };
     let scene = read_scene(&mut r)?;
     let nodes = r.u64("node count")?;
     let dt = r.f64("time step")?;
@@ -197,6 +219,15 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
         // No loads existed: the node masses are the belt's.
         state.node_mass = model.mass.clone();
     }
+    if let Some((formulation, integrator)) = tags {
+        let compiled = (model.formulation.name(), model.integrator.name());
+        if (formulation.as_str(), integrator.as_str()) != compiled {
+            return Err(format!(
+                "corrupt: tagged as a {formulation} belt integrated by {integrator}, but its scene compiles to a {} belt integrated by {}",
+                compiled.0, compiled.1
+            ));
+        }
+    }
     check_state_fits(&state, &model)?;
     Ok(Simulation::from_parts(model, state))
 }
@@ -217,6 +248,16 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ("load zones", s.load_edges.len(), m.loads.len()),
         ("drive memories", s.drive_memory.len(), p),
         ("brake ramps", s.brake_ramp.len(), p),
+        (
+            "belt body angles",
+            s.body_angle.len(),
+            m.initial_angles.len(),
+        ),
+        (
+            "belt body speeds",
+            s.body_spin.len(),
+            m.initial_angles.len(),
+        ),
     ];
     for (what, have, want) in sizes {
         if have != want {
@@ -254,54 +295,6 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
     Ok(())
 }
 
-/// Write `bytes` to `path` atomically: to a temporary file in the same directory, flushed
-/// to disk, then renamed over `path` (and the directory flushed). `before_rename` runs
-/// once the temporary file is complete, just before the rename; an error from it aborts
-/// the write like a crash would (tests use it), leaving `path` untouched. On any error the
-/// temporary file is removed.
-pub fn write_atomic(
-    path: &Path,
-    bytes: &[u8],
-    before_rename: impl FnOnce(&Path) -> std::io::Result<()>,
-) -> BeltResult<()> {
-    let fail = |problem: String| BeltError::Checkpoint {
-        path: path.display().to_string(),
-        problem,
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| fail("not a file name".into()))?
-        .to_string_lossy()
-        .into_owned();
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
-    };
-    // Unique per call: saves from several threads of one process (or one thread's saves
-    // to the same path) never share a temporary file.
-    static SAVES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let call = SAVES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(".{name}.{}.{call}.tmp", std::process::id()));
-    let write = || -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        drop(f);
-        before_rename(&tmp)?;
-        std::fs::rename(&tmp, path)?;
-        // Make the rename itself durable. Some platforms cannot open a directory; the
-        // file is complete either way.
-        if let Ok(d) = std::fs::File::open(&dir) {
-            let _ = d.sync_all();
-        }
-        Ok(())
-    };
-    write().map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        fail(format!("cannot write: {e}"))
-    })
-}
-
 /// Save the simulation's scene and state to `path` (atomically).
 pub fn save(sim: &Simulation, path: &Path) -> BeltResult<()> {
     write_atomic(path, &encode(sim), |_| Ok(()))
@@ -315,53 +308,6 @@ pub fn load(path: &Path) -> BeltResult<Simulation> {
     };
     let bytes = read_file(path).map_err(fail)?;
     decode(&bytes).map_err(fail)
-}
-
-/// The bytes of the checkpoint file at `path`, read safely: anything but a regular file is
-/// refused before it is opened (a FIFO would block, `/dev/zero` never ends), the header
-/// is read and checked (magic, version, and the declared length against the file's size)
-/// before anything else, and the rest is read in chunks that poll [`crate::interrupt`].
-fn read_file(path: &Path) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let cannot = |e: std::io::Error| format!("cannot read: {e}");
-    let regular = |meta: &std::fs::Metadata| -> Result<u64, String> {
-        if meta.is_file() {
-            return Ok(meta.len());
-        }
-        let kind = if meta.is_dir() {
-            "a directory"
-        } else {
-            "a device, FIFO or socket"
-        };
-        Err(format!("not a regular file ({kind})"))
-    };
-    regular(&std::fs::metadata(path).map_err(cannot)?)?;
-    let mut file = std::fs::File::open(path).map_err(cannot)?;
-    // Again on the open file: the path may have been replaced in between.
-    let size = regular(&file.metadata().map_err(cannot)?)?;
-    let mut head = vec![0u8; HEADER_BYTES.min(size as usize)];
-    file.read_exact(&mut head).map_err(cannot)?;
-    check_header(&head, size)?;
-    let mut bytes = head;
-    bytes.reserve_exact(size as usize - bytes.len());
-    const CHUNK: u64 = 1 << 20;
-    loop {
-        let got = (&mut file)
-            .take(CHUNK)
-            .read_to_end(&mut bytes)
-            .map_err(cannot)?;
-        if got == 0 || bytes.len() as u64 > size {
-            break;
-        }
-        crate::interrupt::check(CHUNK / 8).map_err(|_| "interrupted".to_string())?;
-    }
-    if bytes.len() as u64 != size {
-        return Err(format!(
-            "the file changed while it was read ({size} bytes, then {})",
-            bytes.len()
-        ));
-    }
-    Ok(bytes)
 }
 
 /// Load a checkpoint and check that it holds `scene` (e.g. the scene file a user resumes
@@ -429,238 +375,6 @@ pub fn scene_difference(saved: &Scene, given: &Scene) -> Option<String> {
         }
     }
     None
-}
-
-#[derive(Default)]
-struct Writer {
-    buf: Vec<u8>,
-}
-
-impl Writer {
-    fn u64(&mut self, v: u64) {
-        self.buf.extend_from_slice(&v.to_le_bytes());
-    }
-    fn f64(&mut self, v: f64) {
-        self.u64(v.to_bits());
-    }
-    fn str(&mut self, s: &str) {
-        self.bytes(s.as_bytes());
-    }
-    fn bytes(&mut self, b: &[u8]) {
-        self.u64(b.len() as u64);
-        self.buf.extend_from_slice(b);
-    }
-    fn f64s(&mut self, v: &[f64]) {
-        self.u64(v.len() as u64);
-        v.iter().for_each(|&x| self.f64(x));
-    }
-    fn vec2s(&mut self, v: &[Vector2<f64>]) {
-        self.u64(v.len() as u64);
-        for p in v {
-            self.f64(p.x);
-            self.f64(p.y);
-        }
-    }
-}
-
-struct Reader<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    /// Format version of the file being read.
-    version: u32,
-}
-
-type Decoded<T> = Result<T, String>;
-
-impl<'a> Reader<'a> {
-    fn take(&mut self, n: usize, what: &str) -> Decoded<&'a [u8]> {
-        if self.bytes.len() - self.pos < n {
-            return Err(format!(
-                "corrupt: {what} at payload byte {} runs past the end of the payload",
-                self.pos
-            ));
-        }
-        let s = &self.bytes[self.pos..self.pos + n];
-        self.pos += n;
-        Ok(s)
-    }
-    fn u64(&mut self, what: &str) -> Decoded<u64> {
-        Ok(u64::from_le_bytes(
-            self.take(8, what)?.try_into().expect("8 bytes"),
-        ))
-    }
-    fn usize(&mut self, what: &str) -> Decoded<usize> {
-        let v = self.u64(what)?;
-        usize::try_from(v).map_err(|_| format!("corrupt: {what} = {v} does not fit"))
-    }
-    fn f64(&mut self, what: &str) -> Decoded<f64> {
-        Ok(f64::from_bits(self.u64(what)?))
-    }
-    /// A length prefix, checked against the bytes left before anything is allocated.
-    fn len(&mut self, what: &str, item_bytes: usize) -> Decoded<usize> {
-        let n = self.usize(what)?;
-        let left = self.bytes.len() - self.pos;
-        if n.checked_mul(item_bytes).is_none_or(|b| b > left) {
-            return Err(format!(
-                "corrupt: {what} announces {n} items, more than the {left} bytes left"
-            ));
-        }
-        Ok(n)
-    }
-    fn str(&mut self, what: &str) -> Decoded<String> {
-        let s = self.bytes(what)?;
-        String::from_utf8(s.to_vec()).map_err(|_| format!("corrupt: {what} is not UTF-8"))
-    }
-    fn bytes(&mut self, what: &str) -> Decoded<&'a [u8]> {
-        let n = self.len(what, 1)?;
-        self.take(n, what)
-    }
-    fn f64s(&mut self, what: &str) -> Decoded<Vec<f64>> {
-        let n = self.len(what, 8)?;
-        (0..n).map(|_| self.f64(what)).collect()
-    }
-    fn vec2s(&mut self, what: &str) -> Decoded<Vec<Vector2<f64>>> {
-        let n = self.len(what, 16)?;
-        (0..n)
-            .map(|_| Ok(Vector2::new(self.f64(what)?, self.f64(what)?)))
-            .collect()
-    }
-}
-
-/// The scene: its serde form (the one scene schema, [`crate::scene`]) in CBOR, as a
-/// length-prefixed byte string. Floats keep every bit.
-fn write_scene(w: &mut Writer, s: &Scene) {
-    let mut bytes = Vec::new();
-    // Serialising plain data into a Vec cannot fail: no I/O, no fallible Serialize impl.
-    ciborium::into_writer(s, &mut bytes).expect("a scene always serialises");
-    w.bytes(&bytes);
-}
-
-fn read_scene(r: &mut Reader<'_>) -> Decoded<Scene> {
-    let bytes = r.bytes("scene")?;
-    ciborium::from_reader(bytes).map_err(|e| format!("corrupt: the scene does not read back: {e}"))
-}
-
-fn write_state(w: &mut Writer, s: &State) {
-    w.f64(s.time);
-    w.u64(s.step);
-    w.vec2s(&s.position);
-    w.vec2s(&s.velocity);
-    w.f64s(&s.pulley_omega);
-    w.f64s(&s.pulley_angle);
-    w.f64s(&s.takeup_travel);
-    w.f64s(&s.takeup_speed);
-    w.f64s(&s.idler_omega);
-    w.u64(s.pulley_window.len() as u64);
-    for win in &s.pulley_window {
-        w.u64(win.first as u64);
-        w.u64(win.len as u64);
-    }
-    w.u64(s.idler_element.len() as u64);
-    for &e in &s.idler_element {
-        w.u64(e as u64);
-    }
-    w.f64(s.drive_work);
-    w.f64s(&s.node_mass);
-    w.u64(s.load_edges.len() as u64);
-    for e in &s.load_edges {
-        w.u64(e.start_element as u64);
-        w.u64(e.end_element as u64);
-        w.f64(e.start);
-        w.f64(e.end);
-    }
-    // Added within version 4: files written before it end here (read as zero memory).
-    w.u64(s.drive_memory.len() as u64);
-    for c in &s.drive_memory {
-        w.f64(c.integral);
-        w.f64(c.torque);
-        w.f64(c.motor_speed);
-    }
-    // Added within version 4 after the drive memory: older files end before it.
-    w.f64s(&s.brake_ramp);
-}
-
-fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
-    let time = r.f64("time")?;
-    let step = r.u64("step")?;
-    let position = r.vec2s("node positions")?;
-    let velocity = r.vec2s("node velocities")?;
-    let pulley_omega = r.f64s("pulley speeds")?;
-    let pulley_angle = r.f64s("pulley angles")?;
-    let takeup_travel = r.f64s("takeup travel")?;
-    let takeup_speed = r.f64s("takeup speeds")?;
-    let idler_omega = r.f64s("idler speeds")?;
-    let n = r.len("pulley contact windows", 16)?;
-    let pulley_window = (0..n)
-        .map(|_| {
-            Ok(ContactWindow {
-                first: r.usize("pulley contact window")?,
-                len: r.usize("pulley contact window")?,
-            })
-        })
-        .collect::<Decoded<Vec<_>>>()?;
-    let n = r.len("idler elements", 8)?;
-    let idler_element = (0..n)
-        .map(|_| r.usize("idler element"))
-        .collect::<Decoded<Vec<_>>>()?;
-    let drive_work = r.f64("drive work")?;
-    let (node_mass, load_edges) = if r.version >= 2 {
-        let node_mass = r.f64s("node masses")?;
-        let n = r.len("load zones", 32)?;
-        let edges = (0..n)
-            .map(|_| {
-                Ok(LoadEdges {
-                    start_element: r.usize("load zone")?,
-                    end_element: r.usize("load zone")?,
-                    start: r.f64("load zone")?,
-                    end: r.f64("load zone")?,
-                })
-            })
-            .collect::<Decoded<Vec<_>>>()?;
-        (node_mass, edges)
-    } else {
-        // Filled in from the model by `decode`.
-        (Vec::new(), Vec::new())
-    };
-    // Controller memory (added within version 4; absent from older files: zero).
-    let drive_memory = if r.pos < r.bytes.len() {
-        let n = r.len("drive memories", 24)?;
-        (0..n)
-            .map(|_| {
-                Ok(DriveMemory {
-                    integral: r.f64("drive memory")?,
-                    torque: r.f64("drive memory")?,
-                    motor_speed: r.f64("drive memory")?,
-                })
-            })
-            .collect::<Decoded<Vec<_>>>()?
-    } else {
-        vec![DriveMemory::default(); pulley_omega.len()]
-    };
-    // Added within version 4 after the drive memory (absent from older files: none begun).
-    let brake_ramp = if r.pos < r.bytes.len() {
-        r.f64s("brake ramps")?
-    } else {
-        vec![0.0; pulley_omega.len()]
-    };
-    Ok(State {
-        time,
-        step,
-        position,
-        velocity,
-        pulley_omega,
-        pulley_angle,
-        takeup_travel,
-        takeup_speed,
-        idler_omega,
-        pulley_window,
-        idler_element,
-        drive_work,
-        node_mass,
-        load_edges,
-        drive_memory,
-        brake_ramp,
-    })
 }
 
 #[cfg(test)]

@@ -1,0 +1,95 @@
+//! The rigid-body belt's stage: the spring-dampers between neighbouring bodies (Kubas
+//! eq. 20–23) and the body weights. Contact, friction, drives and recording see the bodies'
+//! mass centres as the belt points (`State::position`, `State::velocity`), as Kubas applies
+//! contact and friction there (section 2.1).
+
+use super::sdes::{joint_energy, joint_with, LinkState, SdeParams};
+use crate::model::Model;
+use crate::pipeline::StageContext;
+use crate::state::State;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// Body `i` as the SDE kernels see it.
+#[inline]
+fn link(m: &Model, s: &State, i: usize) -> LinkState {
+    LinkState {
+        position: s.position[i],
+        angle: s.body_angle[i],
+        velocity: s.velocity[i],
+        angular_velocity: s.body_spin[i],
+        length: m.rest_length[i],
+    }
+}
+
+/// The SDEs of joint `e` (between body e and body e+1), dampers on if `damped`.
+#[inline]
+fn params(m: &Model, e: usize, damped: bool) -> SdeParams {
+    SdeParams {
+        translational_stiffness: m.axial_stiffness[e],
+        translational_damping: if damped { m.axial_damping[e] } else { 0.0 },
+        torsional_stiffness: m.bending_stiffness[e],
+        torsional_damping: if damped { m.torsional_damping[e] } else { 0.0 },
+    }
+}
+
+/// SDE forces and torques of the closed chain and the body weights −m·g ŷ. **Writes**
+/// every body force and torque (the first stage that touches them) and each joint's
+/// tension: the SDE force along the mean axis of its two bodies, N, negative when the
+/// ends overlap (the spring then pushes the bodies apart). The relaxation runs the
+/// dampers off ([`crate::pipeline::Effects::damping`]).
+pub fn chain(cx: &mut StageContext<'_>) {
+    let (m, s, sc) = (cx.model, &*cx.state, &mut *cx.scratch);
+    let n = m.nodes;
+    let g = if m.gravity > 0.0 { m.gravity } else { 0.0 };
+    for (i, (f, t)) in sc.force.iter_mut().zip(&mut sc.body_torque).enumerate() {
+        *f = V2::new(0.0, -s.node_mass[i] * g);
+        *t = 0.0;
+    }
+    let damped = cx.effects.damping;
+    // Each body's half-length vector (a sine and a cosine) once, carried to the next joint.
+    let first = link(m, s, 0);
+    let first_half = first.half_vector();
+    let (mut left, mut hl) = (first, first_half);
+    for e in 0..n {
+        let r = if e + 1 == n { 0 } else { e + 1 };
+        let (right, hr) = if r == 0 {
+            (first, first_half)
+        } else {
+            let b = link(m, s, r);
+            (b, b.half_vector())
+        };
+        let j = joint_with(&left, hl, &right, hr, &params(m, e, damped));
+        sc.force[r] += j.force_on_right;
+        sc.force[e] -= j.force_on_right;
+        sc.body_torque[e] += j.torque_on_left;
+        sc.body_torque[r] += j.torque_on_right;
+        let axis = hl / left.length + hr / right.length;
+        sc.tension[e] = if j.direction.dot(&axis) < 0.0 {
+            -j.tension
+        } else {
+            j.tension
+        };
+        (left, hl) = (right, hr);
+    }
+}
+
+/// Stored energy of the chain: (translational ½c_x|d|², torsional ½c_φΔφ²), J.
+pub fn chain_energy(m: &Model, s: &State) -> (f64, f64) {
+    let n = m.nodes;
+    let (mut strain, mut bending) = (0.0, 0.0);
+    for e in 0..n {
+        let (l, r) = (link(m, s, e), link(m, s, (e + 1) % n));
+        let p = params(m, e, false);
+        let elastic = SdeParams {
+            torsional_stiffness: 0.0,
+            ..p
+        };
+        let total = joint_energy(&l, &r, &p);
+        let translational = joint_energy(&l, &r, &elastic);
+        strain += translational;
+        bending += total - translational;
+    }
+    (strain, bending)
+}

@@ -1,0 +1,245 @@
+//! Adaptive Runge–Kutta–Fehlberg 4(5) ([`super::rkf45`]) on the whole state of a
+//! simulation: every generalized coordinate and speed of the layout
+//! ([`crate::state::DofLayout`]: belt points, takeups, pulleys, idlers, rigid belt bodies)
+//! and the drives' work, as one flat vector whose derivative is the pipeline's force
+//! evaluation ([`crate::pipeline::evaluate`]).
+//!
+//! - Velocities are at the state's time (not half a step behind, as with central
+//!   differences); the recorder reads them as they are.
+//! - The integrator owns its steps: it lands on every recording instant (the grid
+//!   `record_start + k·every·Δt`, Δt the model's central-difference step as the grid's
+//!   unit) and on the end of the run, and its next step is part of the state
+//!   (`State::adaptive_step`), so that a run resumed from a checkpoint takes the same steps
+//!   bit for bit.
+//! - The error norm is the RMS of eᵢ/(atol + rtol·|yᵢ|) over all components in their SI
+//!   units (m, rad, m/s, rad/s; the drives' work is left out of the norm).
+//! - After each accepted step the takeups' stops are applied, as central differences do.
+//!
+//! Effects solved for a fixed step (stick-force friction, speed holds, brakes, running
+//! resistance, loads) are refused by the scene rules under this integrator.
+
+use super::rkf45::Rkf45;
+use crate::error::BeltResult;
+use crate::pipeline::Effects;
+use crate::simulation::Simulation;
+use crate::state::Rigid;
+use nalgebra::Vector2;
+
+/// Absolute-tolerance scale of the drives' work in the error norm: large enough that it
+/// never sets the step (the work is an output, not a state the forces depend on).
+const WORK_SCALE: f64 = 1e300;
+
+impl Simulation {
+    /// Number of components of the flat state: positions and rigid coordinates, speeds,
+    /// the drives' work.
+    fn flat_len(&self) -> usize {
+        let m = &self.model;
+        let coordinates = m
+            .dofs
+            .rigid
+            .iter()
+            .filter(|&&d| self.state.rigid(d).0.is_some())
+            .count();
+        4 * m.nodes + coordinates + m.dofs.rigid.len() + 1
+    }
+
+    /// The state as one flat vector (see [`Simulation::flat_len`]).
+    fn pack(&self, y: &mut Vec<f64>) {
+        let s = &self.state;
+        y.clear();
+        y.extend(s.position.iter().flat_map(|p| [p.x, p.y]));
+        for &d in &self.model.dofs.rigid {
+            if let (Some(q), _) = s.rigid(d) {
+                y.push(q);
+            }
+        }
+        y.extend(s.velocity.iter().flat_map(|v| [v.x, v.y]));
+        y.extend(self.model.dofs.rigid.iter().map(|&d| s.rigid_speed(d)));
+        y.push(s.drive_work);
+    }
+
+    /// Put a flat vector back into the state.
+    fn unpack(&mut self, y: &[f64]) {
+        let n = self.model.nodes;
+        let s = &mut self.state;
+        let mut k = 0;
+        for p in &mut s.position {
+            *p = Vector2::new(y[k], y[k + 1]);
+            k += 2;
+        }
+        for &d in &self.model.dofs.rigid {
+            if let (Some(q), _) = s.rigid_mut(d) {
+                *q = y[k];
+                k += 1;
+            }
+        }
+        for v in &mut s.velocity {
+            *v = Vector2::new(y[k], y[k + 1]);
+            k += 2;
+        }
+        debug_assert_eq!(s.velocity.len(), n);
+        for &d in &self.model.dofs.rigid {
+            *s.rigid_speed_mut(d) = y[k];
+            k += 1;
+        }
+        s.drive_work = y[k];
+    }
+
+    /// dy/dt at (t, y): the speeds, and the accelerations of one force evaluation.
+    fn derivative(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.state.time = t;
+        self.unpack(y);
+        let dt = self.model.dt;
+        self.evaluate_full(Effects::ALL, dt, dt, 1.0, false);
+        let (m, s, sc) = (&self.model, &self.state, &self.scratch);
+        let mut k = 0;
+        for v in &s.velocity {
+            dy[k] = v.x;
+            dy[k + 1] = v.y;
+            k += 2;
+        }
+        for &d in &m.dofs.rigid {
+            if let (Some(_), speed) = s.rigid(d) {
+                dy[k] = speed;
+                k += 1;
+            }
+        }
+        for (f, im) in sc.force.iter().zip(&self.inertia.inv_mass) {
+            dy[k] = f.x * im;
+            dy[k + 1] = f.y * im;
+            k += 2;
+        }
+        let mut power = 0.0;
+        for &d in &m.dofs.rigid {
+            dy[k] = sc.rigid_force(m, d) / self.inertia.rigid(m, d);
+            k += 1;
+            if let Rigid::Pulley(j) = d {
+                power += sc.drive_torque[j] * s.pulley_omega[j];
+            }
+        }
+        dy[k] = power;
+    }
+
+    /// The adaptive integrator of this model with its next step from the state.
+    fn adaptive(&self, len: usize) -> BeltResult<Rkf45> {
+        let super::Integrator::Rkf45(mut params) = self.model.integrator else {
+            unreachable!("only called for the RKF45 integrator");
+        };
+        params.initial_step = self.state.adaptive_step;
+        let mut rk = Rkf45::new(params, len)?;
+        let mut scales = vec![1.0; len];
+        scales[len - 1] = WORK_SCALE;
+        rk.set_absolute_scales(&scales)?;
+        Ok(rk)
+    }
+
+    /// One accepted RKF45 step from the state towards `target` (s): the state, its time,
+    /// the step counters and the next step are updated, and the takeups' stops applied.
+    fn adaptive_step(&mut self, rk: &mut Rkf45, y: &mut Vec<f64>, target: f64) -> BeltResult<()> {
+        crate::interrupt::check(self.model.nodes as u64)?;
+        self.pack(y);
+        let mut t = self.state.time;
+        let rejected = rk.stats.rejected;
+        let result = rk.step(&mut t, y, target, &mut |tt, yy, dd| {
+            self.derivative(tt, yy, dd)
+        });
+        self.state.rejected_steps += rk.stats.rejected - rejected;
+        if let Err(e) = result {
+            // The state holds the last trial stage; `y` is still the step's start.
+            let start = y.clone();
+            return Err(self.adaptive_failure(e, start));
+        }
+        self.unpack(y);
+        self.state.time = t;
+        self.state.step += 1;
+        self.state.accepted_steps += 1;
+        self.state.adaptive_step = rk.next_step();
+        let m = &self.model;
+        for (j, p) in m.pulleys.iter().enumerate() {
+            if let Some(tk) = &p.takeup {
+                let s = &mut self.state;
+                crate::drives::takeup::apply_stops(
+                    tk,
+                    &mut s.takeup_travel[j],
+                    &mut s.takeup_speed[j],
+                );
+            }
+        }
+        if y.iter().any(|v| !v.is_finite()) {
+            return Err(self.locate_non_finite());
+        }
+        Ok(())
+    }
+
+    /// The error of a failed step, with the state put back at the step's start `y0`.
+    fn adaptive_failure(&mut self, e: super::rkf45::StepError, y0: Vec<f64>) -> crate::BeltError {
+        let time = match &e {
+            super::rkf45::StepError::StepTooSmall { time, .. }
+            | super::rkf45::StepError::NonFinite { time, .. } => *time,
+        };
+        self.unpack(&y0);
+        self.state.time = time;
+        let err: crate::BeltError = e.into();
+        match err {
+            crate::BeltError::Diverged { .. } => crate::BeltError::Diverged {
+                time,
+                step: self.state.step,
+                quantity: "state (RKF45 could not take a finite step)".into(),
+                location: "the model".into(),
+            },
+            other => other,
+        }
+    }
+
+    /// RKF45 towards `end` (s), at most `max_steps` accepted steps in this call, sampling
+    /// the recording on its time grid ([`Simulation::begin_recording`]) before each step
+    /// that starts on it. Returns true once the state is at `end` exactly.
+    pub(crate) fn adaptive_to(
+        &mut self,
+        end: f64,
+        max_steps: u64,
+        record: bool,
+    ) -> BeltResult<bool> {
+        let len = self.flat_len();
+        let mut rk = self.adaptive(len)?;
+        let mut y = Vec::with_capacity(len);
+        let unit = self.model.dt;
+        // A recording instant within this of the time is the time (rounding of the sums).
+        let snap = |t: f64| 1e-9 * unit + 4.0 * f64::EPSILON * t.abs();
+        let mut taken = 0;
+        while self.state.time < end {
+            if taken == max_steps {
+                return Ok(false);
+            }
+            let mut target = end;
+            if record {
+                // The next instant of the grid at or after now.
+                let every = self.record_every;
+                let mut index = self.record_counter.div_ceil(every) * every;
+                let mut at = self.record_start + index as f64 * unit;
+                while at < self.state.time - snap(at) {
+                    index += every;
+                    at = self.record_start + index as f64 * unit;
+                }
+                if (at - self.state.time).abs() <= snap(at) {
+                    self.evaluate(Effects::ALL);
+                    self.record_counter = index;
+                    self.record_if_due()?;
+                    self.record_counter = index + 1;
+                    let every = self.record_every;
+                    let next = self.record_counter.div_ceil(every) * every;
+                    target = end.min(self.record_start + next as f64 * unit);
+                } else {
+                    target = end.min(at);
+                }
+            }
+            self.adaptive_step(&mut rk, &mut y, target)?;
+            taken += 1;
+            if (target - self.state.time).abs() <= snap(target) {
+                self.state.time = target;
+            }
+        }
+        self.state.time = end;
+        Ok(true)
+    }
+}
