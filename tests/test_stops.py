@@ -122,12 +122,12 @@ def incline(**kw) -> Conveyor:
     return Conveyor(**base)
 
 
-def incline_run(c: Conveyor, duration: float):
+def incline_run(c: Conveyor, duration: float, elements: int | None = None):
     """Run from the placed belt: the drive holds its drum at rest until its curve begins
     (1 s), while the belt settles on its rolls under gravity (a loaded incline has no
     frictionless static state to relax to, and the relaxation with friction does not reach
-    the tolerance here)."""
-    scene = c.scene()
+    the tolerance here). `elements`: the belt's element count (default: the builder's)."""
+    scene = c.scene(elements=elements)
     sim = beltrs.Simulation(scene)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", beltrs.NotRelaxedWarning)  # the settling is the first second
@@ -137,8 +137,19 @@ def incline_run(c: Conveyor, duration: float):
 
 @pytest.fixture(scope="module")
 def held_incline():
+    """Twice the builder's element count: 0.082 m elements, 15° of wrap each on the 0.315 m
+    drums. At the builder's 0.164 m (30° of wrap per element) the node polygon on each wrap
+    holds a tension step at rest that depends on where the nodes sit on the drum (radial
+    contact forces at nodes that do not bisect the chords' kink; and the bending stiffness's
+    cogging), which the holdback carries: measured (14 s run, mean from 6 s) −1293.7 N·m at
+    503 elements (−1262.2 with no bending stiffness) against −1207.3 at 1006 and the exact
+    −1203.6. The tail drum's mean torque is zero (−2.5 N·m) while the mean tension across
+    its wrap steps by 343 N (belt weight over the wrap: 91 N). Which node phase the belt
+    stops in is set by the start state, so this was 0.3 % from the old relaxed start and
+    7.5 % from the design start (docs/stops-takeups.md)."""
     c = incline(stop=StopSpec(time=2.5), holdback="head", takeup=TakeupSpec(lock_on_stop=True))
-    return (c, *incline_run(c, 14.0))
+    scene = c.scene()
+    return (c, *incline_run(c, 14.0, elements=2 * scene.belt.elements))
 
 
 def test_holdback_holds_a_loaded_incline(held_incline):
@@ -218,7 +229,10 @@ def test_deceleration_brake_on_a_decline():
     c = Conveyor(profile=[(0.0, RISE), (SPAN, 0.0)], belt="EP630/4", capacity=400.0, speed=1.5, f=0.0,
                  drives=[DriveSpec("head", start_curve=StartCurve("harrison", speed=1.5, ramp=1.0, start=1.0))],
                  stop=StopSpec(time=3.0, brake="head", deceleration=0.3))
-    scene, sim, res = incline_run(c, 16.0)
+    # Twice the builder's elements, as for the held incline: at 30° of wrap per element the
+    # node polygon passing over the drums drives the belt's ringing, and the brake sits at
+    # its capacity a quarter of the time (measured at 503 elements: on the ramp 66 %).
+    scene, sim, res = incline_run(c, 16.0, elements=2 * c.scene().belt.elements)
     head = scene.pulley_index("head")
     brake = scene.pulleys[head].brake
     assert brake.applied == 3.0 and brake.deceleration == 0.3
@@ -235,7 +249,12 @@ def test_deceleration_brake_on_a_decline():
     ramp = 1.5 - 0.3 * (t - 3.0)
     torque = res.brake_torque[:, head]
     assert np.all(torque[running] >= 0.0)  # it only opposes the clockwise motion
-    inside = running & (torque > 0.0) & (torque < cap)
+    # A sample next to one at the capacity is not on the ramp either: its speed is centred on
+    # it, half from the step that saturated (measured: 5.2e-5 m/s off at 5.898 s, next to
+    # the capacity sample at 5.903 s, against 1.4e-5 for the ramp's own half step).
+    sat = torque == cap
+    beside = np.roll(sat, 1) | np.roll(sat, -1)
+    inside = running & (torque > 0.0) & (torque < cap) & ~beside
     tol = 0.3 * sim.dt + 1e-9
     np.testing.assert_allclose(v[inside], ramp[inside], atol=tol)
     assert np.all(v[running & (torque == cap)] >= ramp[running & (torque == cap)] - tol)
