@@ -369,18 +369,8 @@ impl Rkf45 {
                     absolute_tolerance: self.params.absolute_tolerance,
                 });
             }
-            for s in 0..6 {
-                for i in 0..n {
-                    let mut acc = 0.0;
-                    for (j, a) in A[s].iter().enumerate().take(s) {
-                        acc += a * self.k[j][i];
-                    }
-                    self.stage[i] = y[i] + h * acc;
-                }
-                let (ks, _) = self.k.split_at_mut(s + 1);
-                f(*t + C[s] * h, &self.stage, &mut ks[s]);
-                self.stats.evaluations += 1;
-            }
+            self.stages(*t, y, h, f);
+            self.stats.evaluations += 6;
             let mut bad = None;
             for i in 0..n {
                 let (mut lo, mut hi) = (0.0, 0.0);
@@ -465,15 +455,14 @@ impl Rkf45 {
         Ok(())
     }
 
-    /// The local error estimate ŷ − y of one trial step of size `h` from (`t`, `y`) without
-    /// moving: (4th-order solution, 5th-order solution). For tests of the estimate.
-    pub fn trial<F>(&mut self, t: f64, y: &[f64], h: f64, f: &mut F) -> (Vec<f64>, Vec<f64>)
+    /// The six Fehlberg stage derivatives k₀…k₅ of a step of size `h` from (`t`, `y`), into
+    /// `self.k` (one evaluation of `f` each).
+    fn stages<F>(&mut self, t: f64, y: &[f64], h: f64, f: &mut F)
     where
         F: FnMut(f64, &[f64], &mut [f64]),
     {
-        let n = y.len();
         for s in 0..6 {
-            for i in 0..n {
+            for i in 0..y.len() {
                 let mut acc = 0.0;
                 for (j, a) in A[s].iter().enumerate().take(s) {
                     acc += a * self.k[j][i];
@@ -483,6 +472,16 @@ impl Rkf45 {
             let (ks, _) = self.k.split_at_mut(s + 1);
             f(t + C[s] * h, &self.stage, &mut ks[s]);
         }
+    }
+
+    /// The local error estimate ŷ − y of one trial step of size `h` from (`t`, `y`) without
+    /// moving: (4th-order solution, 5th-order solution). For tests of the estimate.
+    pub fn trial<F>(&mut self, t: f64, y: &[f64], h: f64, f: &mut F) -> (Vec<f64>, Vec<f64>)
+    where
+        F: FnMut(f64, &[f64], &mut [f64]),
+    {
+        let n = y.len();
+        self.stages(t, y, h, f);
         let mut lo = y.to_vec();
         let mut hi = y.to_vec();
         for i in 0..n {
