@@ -58,12 +58,8 @@ impl Simulation {
             .map(|p| p.contact_bound(1.0).0)
             .chain(m.idlers.iter().map(|d| d.contact_stiffness))
             .fold(0.0, f64::max);
-        let stiffest_element = m
-            .axial_stiffness
-            .iter()
-            .zip(&m.rest_length)
-            .map(|(ea, l)| ea / l)
-            .fold(0.0, f64::max);
+        // `axial_stiffness` is EA/l⁰ already (N/m, like the contact stiffness).
+        let stiffest_element = m.axial_stiffness.iter().copied().fold(0.0, f64::max);
         // At most CONTINUATION_STAGES stages: an absurdly soft belt (EA → 0) must not ask
         // for an endless ladder (found by the fuzzer: EA = 5e-324 allocated without end).
         let floor = CONTINUATION_FACTOR.powi(-CONTINUATION_STAGES);
@@ -75,5 +71,34 @@ impl Simulation {
             scale *= CONTINUATION_FACTOR;
         }
         ladder
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ladder starts where the contact is CONTINUATION_START × the stiffest element,
+    /// EA/l⁰ (N/m, like the contact): case H at 400 elements (l⁰ ≈ 0.58 m, so dividing
+    /// by l⁰ once more, N/m², would start it 1.7× too stiff) and 1e11 N/m contact.
+    #[test]
+    fn the_ladder_starts_at_the_element_stiffness_in_newtons_per_metre() {
+        let mut scene = crate::presets::case_h(400);
+        for p in &mut scene.pulleys {
+            p.contact_stiffness = 1e11;
+        }
+        let sim = Simulation::new(&scene).unwrap();
+        let l0 = sim.model.rest_length[0];
+        assert!((l0 - 1.0).abs() > 0.3, "l⁰ = {l0} m would not tell N/m from N/m²");
+        let element = scene.belt.axial_stiffness / l0;
+        let ladder = sim.contact_continuation();
+        let start = CONTINUATION_START * element / 1e11;
+        assert!(
+            (ladder[0] - start).abs() <= 1e-12 * start,
+            "ladder {ladder:?}, expected to start at {start:e}"
+        );
+        // Then ×10 per stage while below 1/√10: 0.0132, 0.132.
+        assert_eq!(ladder.len(), 2, "{ladder:?}");
+        assert!((ladder[1] - CONTINUATION_FACTOR * start).abs() <= 1e-12 * ladder[1]);
     }
 }
