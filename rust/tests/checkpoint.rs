@@ -147,6 +147,25 @@ fn damaged_files_give_clear_errors() {
             "format version 99",
         ),
         (
+            // Versions 1 to 3 (the hand-written scene encodings) are no longer read.
+            "old version",
+            {
+                let mut b = good.clone();
+                b[8] = 3;
+                b
+            },
+            "format version 3; this build of beltrs reads versions 4 to",
+        ),
+        (
+            "version 1",
+            {
+                let mut b = good.clone();
+                b[8] = 1;
+                b
+            },
+            "format version 1;",
+        ),
+        (
             "appended",
             {
                 let mut b = good.clone();
@@ -162,6 +181,9 @@ fn damaged_files_give_clear_errors() {
         let (file, msg) = problem(checkpoint::load(&p).expect_err(name));
         assert_eq!(file, p.display().to_string());
         assert!(msg.contains(expected), "{name}: {msg}");
+        if name.contains("version") && name != "version" {
+            assert!(msg.contains("re-run from the scene file"), "{name}: {msg}");
+        }
     }
     let (_, msg) = problem(checkpoint::load(&dir.join("missing.ck")).unwrap_err());
     assert!(msg.contains("cannot read"), "{msg}");

@@ -189,24 +189,18 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         .map(|_| r.usize("idler element"))
         .collect::<Decoded<Vec<_>>>()?;
     let drive_work = r.f64("drive work")?;
-    let (node_mass, load_edges) = if r.version >= 2 {
-        let node_mass = r.f64s("node masses")?;
-        let n = r.len("load zones", 32)?;
-        let edges = (0..n)
-            .map(|_| {
-                Ok(LoadEdges {
-                    start_element: r.usize("load zone")?,
-                    end_element: r.usize("load zone")?,
-                    start: r.f64("load zone")?,
-                    end: r.f64("load zone")?,
-                })
+    let node_mass = r.f64s("node masses")?;
+    let n = r.len("load zones", 32)?;
+    let load_edges = (0..n)
+        .map(|_| {
+            Ok(LoadEdges {
+                start_element: r.usize("load zone")?,
+                end_element: r.usize("load zone")?,
+                start: r.f64("load zone")?,
+                end: r.f64("load zone")?,
             })
-            .collect::<Decoded<Vec<_>>>()?;
-        (node_mass, edges)
-    } else {
-        // Filled in from the model by `decode`.
-        (Vec::new(), Vec::new())
-    };
+        })
+        .collect::<Decoded<Vec<_>>>()?;
     // Controller memory: always in version 5; added within version 4, so absent from
     // older version 4 files (zero memory).
     let drive_memory = if r.version >= 5 || r.pos < r.bytes.len() {

@@ -203,7 +203,7 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
     let scene = read_scene(&mut r)?;
     let nodes = r.u64("node count")?;
     let dt = r.f64("time step")?;
-    let mut state = read_state(&mut r)?;
+    let state = read_state(&mut r)?;
     if r.pos != r.bytes.len() {
         return Err(format!(
             "corrupt: {} unread bytes after the state",
@@ -217,10 +217,6 @@ pub fn decode(bytes: &[u8]) -> Result<Simulation, String> {
             "its scene compiles to {} nodes and Δt = {:e} s with this build, but was saved with {} nodes and Δt = {:e} s; an exact resume is impossible",
             model.nodes, model.dt, nodes, dt
         ));
-    }
-    if version < 2 {
-        // No loads existed: the node masses are the belt's.
-        state.node_mass = model.mass.clone();
     }
     if let Some((formulation, integrator)) = tags {
         let compiled = (model.formulation.name(), model.integrator.name());
