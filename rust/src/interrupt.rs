@@ -26,6 +26,8 @@ struct Hook {
     poll: Option<Poll>,
     work: u64,
     last: Instant,
+    /// The wall clock (`Instant::now`; the tests give a clock they step themselves).
+    clock: fn() -> Instant,
 }
 
 thread_local! {
@@ -48,6 +50,15 @@ pub fn reported() -> u64 {
 /// Run `f` with `poll` as this thread's interrupt hook (restoring the previous hook after,
 /// also on a panic). `poll` returns true to interrupt.
 pub fn with_hook<T>(poll: impl FnMut() -> bool + 'static, f: impl FnOnce() -> T) -> T {
+    with_hook_on_clock(poll, Instant::now, f)
+}
+
+/// [`with_hook`] with `clock` as the wall clock.
+fn with_hook_on_clock<T>(
+    poll: impl FnMut() -> bool + 'static,
+    clock: fn() -> Instant,
+    f: impl FnOnce() -> T,
+) -> T {
     struct Restore(Option<Hook>);
     impl Drop for Restore {
         fn drop(&mut self) {
@@ -58,7 +69,8 @@ pub fn with_hook<T>(poll: impl FnMut() -> bool + 'static, f: impl FnOnce() -> T)
     let hook = Hook {
         poll: Some(Box::new(poll)),
         work: 0,
-        last: Instant::now(),
+        last: clock(),
+        clock,
     };
     let _restore = Restore(HOOK.with(|h| h.borrow_mut().replace(hook)));
     f()
@@ -76,7 +88,7 @@ pub fn check(work: u64) -> BeltResult<()> {
             return None;
         }
         hook.work = 0;
-        let now = Instant::now();
+        let now = (hook.clock)();
         if now.duration_since(hook.last) < POLL_INTERVAL {
             return None;
         }
@@ -114,16 +126,40 @@ mod tests {
         }
     }
 
+    thread_local! {
+        /// The test clock: its start and the clock reads so far.
+        static TICKS: Cell<(Option<Instant>, u32)> = const { Cell::new((None, 0)) };
+    }
+
+    /// Each reading of this clock is 1 ms after the one before: the loop below reads it
+    /// once per [`WORK_PER_CLOCK_READ`] units of work, so "wall time" is counted in work
+    /// and the test does not depend on how fast (or how loaded) the machine is.
+    fn ticking_clock() -> Instant {
+        TICKS.with(|t| {
+            let (start, reads) = t.get();
+            let start = start.unwrap_or_else(Instant::now);
+            t.set((Some(start), reads + 1));
+            start + Duration::from_millis(reads.into())
+        })
+    }
+
+    fn ticked() -> Duration {
+        Duration::from_millis(TICKS.with(|t| t.get().1).saturating_sub(1).into())
+    }
+
+    /// The hook is polled once per [`POLL_INTERVAL`] of (clock) time, not more often and
+    /// not less, and its `true` stops the loop at once with [`BeltError::Interrupted`].
     #[test]
     fn a_hook_is_polled_within_the_interval_and_stops_the_loop() {
-        let polls = Rc::new(Cell::new(0));
+        let polls = Rc::new(RefCell::new(Vec::new()));
         let seen = polls.clone();
-        let start = Instant::now();
-        let r = with_hook(
+        let r = with_hook_on_clock(
             move || {
-                seen.set(seen.get() + 1);
-                start.elapsed() > Duration::from_millis(50)
+                // Asks to stop once more than 50 ms have passed.
+                seen.borrow_mut().push(ticked());
+                ticked() > Duration::from_millis(50)
             },
+            ticking_clock,
             || -> BeltResult<()> {
                 loop {
                     check(1)?;
@@ -131,11 +167,33 @@ mod tests {
             },
         );
         assert_eq!(r, Err(BeltError::Interrupted));
-        let late = start.elapsed();
-        assert!(late < Duration::from_millis(200), "stopped after {late:?}");
-        assert!(polls.get() >= 2);
+        // Polled at 20, 40 and 60 ms (every POLL_INTERVAL), stopped by the third poll:
+        // within one interval of the hook's 50 ms.
+        let interval = POLL_INTERVAL.as_millis() as u64;
+        let expected: Vec<Duration> = (1..=3)
+            .map(|k| Duration::from_millis(k * interval))
+            .collect();
+        assert_eq!(*polls.borrow(), expected);
+        assert_eq!(ticked(), Duration::from_millis(3 * interval));
         // The hook is gone afterwards.
         check(1 << 40).unwrap();
+    }
+
+    /// The same on the real clock: the loop stops within a wide bound of the hook's time
+    /// (a smoke test; the exact polling is checked on the test clock above).
+    #[test]
+    fn a_hook_on_the_wall_clock_stops_the_loop() {
+        let start = Instant::now();
+        let r = with_hook(
+            move || start.elapsed() > Duration::from_millis(50),
+            || -> BeltResult<()> {
+                loop {
+                    check(1)?;
+                }
+            },
+        );
+        assert_eq!(r, Err(BeltError::Interrupted));
+        assert!(start.elapsed() >= Duration::from_millis(50));
     }
 
     #[test]
