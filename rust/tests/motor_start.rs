@@ -5,18 +5,11 @@
 use beltrs::drives::coupling::{CouplingModel, FluidCoupling};
 use beltrs::drives::motor::{Motor, MotorCurve, MotorModel};
 use beltrs::record::Channels;
-use beltrs::scene::{BeltParams, DriveSpec, PulleySpec, Scene, SolverParams, Wrap};
+use beltrs::scene::{DriveSpec, Scene, Wrap};
 use beltrs::{BeltError, Simulation, Stage};
+use crate::common::{close, free_pulley};
 
 const INERTIA: f64 = 40.0;
-
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e} (diff {:e}, allowed {tol:e})",
-        (got - want).abs()
-    );
-}
 
 /// A 110 kW 4-pole motor: 1485 rpm, synchronous 1500 rpm, breakdown 2.5 × rated.
 fn motor() -> Motor {
@@ -30,38 +23,10 @@ fn motor() -> Motor {
     }
 }
 
-/// A 10 m loop without gravity whose pulley 0 does not touch the belt: a free inertia of
-/// 40 kg·m² driven by `drive`.
+/// A free inertia of 40 kg·m² (`common::free_pulley`, radius 0.5 m, 60 elements) driven
+/// by `drive`.
 fn rigid_scene(drive: DriveSpec, dt: f64) -> Scene {
-    let pulley = |center: [f64; 2]| PulleySpec {
-        center,
-        radius: 0.5,
-        inertia: Some(INERTIA),
-        contact_stiffness: 1e7,
-        ..Default::default()
-    };
-    Scene {
-        belt: BeltParams {
-            axial_stiffness: 1e6,
-            mass_per_length: 10.0,
-            elements: Some(60),
-            ..Default::default()
-        },
-        pulleys: vec![
-            PulleySpec {
-                contact_stiffness: 0.0,
-                drive: Some(drive),
-                ..pulley([0.0, 0.0])
-            },
-            pulley([10.0, 0.0]),
-        ],
-        gravity: 0.0,
-        solver: SolverParams {
-            time_step: Some(dt),
-            ..Default::default()
-        },
-        ..Default::default()
-    }
+    free_pulley(drive, 0.5, INERTIA, 60, dt)
 }
 
 /// The Kloss curve passes through the rated point (T_r at n_r) and peaks at T_b = k·T_r at
@@ -244,3 +209,4 @@ fn bad_motors_are_refused() {
         &format!("{f}.coupling.stall_torque_ratio"),
     );
 }
+

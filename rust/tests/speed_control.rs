@@ -5,68 +5,34 @@ use beltrs::checkpoint;
 use beltrs::drives::controller::{gains, SpeedController};
 use beltrs::drives::sharing::TorqueFollow;
 use beltrs::record::Channels;
-use beltrs::scene::{BeltParams, DriveSpec, PulleySpec, Scene, SolverParams, Table};
+use beltrs::scene::{DriveSpec, Scene, Table};
 use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
+use crate::common::{close, free_pulley};
 
 const INERTIA: f64 = 50.0;
 const RADIUS: f64 = 1.0;
 const OMEGA_C: f64 = 10.0;
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e} (diff {:e}, allowed {tol:e})",
-        (got - want).abs()
-    );
-}
-
-/// A 10 m two-pulley loop without gravity whose pulley 0 does not touch the belt (contact
-/// stiffness 0): a free rigid inertia of 50 kg·m², driven by a PI controller tuned on
-/// exactly that inertia, following a linear ramp to 2 rad/s over 1 s from t = 0.
+/// A free rigid inertia of 50 kg·m² (`common::free_pulley`, 120 elements), driven by a PI
+/// controller tuned on exactly that inertia, following a linear ramp to 2 rad/s over 1 s
+/// from t = 0.
 fn rigid_scene(max_torque: f64, dt: f64) -> Scene {
-    let pulley = |center: [f64; 2]| PulleySpec {
-        center,
-        radius: RADIUS,
-        inertia: Some(INERTIA),
-        contact_stiffness: 1e7,
+    let drive = DriveSpec {
+        start_curve: Some(StartCurve {
+            shape: StartShape::Linear,
+            speed: 2.0,
+            ramp: 1.0,
+            ..Default::default()
+        }),
+        max_torque,
+        controller: Some(SpeedController {
+            bandwidth: OMEGA_C,
+            inertia: Some(INERTIA),
+            ..Default::default()
+        }),
         ..Default::default()
     };
-    Scene {
-        belt: BeltParams {
-            axial_stiffness: 1e6,
-            mass_per_length: 10.0,
-            elements: Some(120),
-            ..Default::default()
-        },
-        pulleys: vec![
-            PulleySpec {
-                contact_stiffness: 0.0,
-                drive: Some(DriveSpec {
-                    start_curve: Some(StartCurve {
-                        shape: StartShape::Linear,
-                        speed: 2.0,
-                        ramp: 1.0,
-                        ..Default::default()
-                    }),
-                    max_torque,
-                    controller: Some(SpeedController {
-                        bandwidth: OMEGA_C,
-                        inertia: Some(INERTIA),
-                        ..Default::default()
-                    }),
-                    ..Default::default()
-                }),
-                ..pulley([0.0, 0.0])
-            },
-            pulley([10.0, 0.0]),
-        ],
-        gravity: 0.0,
-        solver: SolverParams {
-            time_step: Some(dt),
-            ..Default::default()
-        },
-        ..Default::default()
-    }
+    free_pulley(drive, RADIUS, INERTIA, 120, dt)
 }
 
 /// The speed error ω_ref − ω (rad/s) of a critically damped PI loop on a rigid inertia
@@ -415,3 +381,4 @@ fn checkpoint_without_drive_memory_reads_as_zero_memory() {
         .iter()
         .all(|m| *m == Default::default()));
 }
+

@@ -3,18 +3,13 @@
 use beltrs::checkpoint;
 use beltrs::record::Channels;
 use beltrs::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionModel, PulleySpec, Scene, Table, Wrap,
+    BrakeSpec, FrictionModel, Scene, Table, Wrap,
 };
-use beltrs::{BeltError, Simulation, StabiliseOptions, Stage, StartCurve, StartShape};
+use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
+use crate::common::{
+    belt_loop, close, grip, relaxed, start_drive, LOOP_INERTIA, LOOP_RADIUS, PER_PULLEY_ONLY,
+};
 use std::f64::consts::PI;
-
-/// Record only the small per-pulley arrays (no tensions, positions or velocities).
-const PER_PULLEY_ONLY: Channels = Channels {
-    tension: false,
-    node_position: false,
-    node_velocity: false,
-    energy: false,
-};
 
 // ---------------------------------------------------------------------------------------
 // 1. The curves
@@ -27,15 +22,6 @@ fn curve(shape: StartShape, speed: f64, ramp: f64) -> StartCurve {
         ramp,
         ..Default::default()
     }
-}
-
-/// |a − b| ≤ tol, with a readable panic message.
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e} (diff {:e}, allowed {tol:e})",
-        (got - want).abs()
-    );
 }
 
 /// Values at τ = ¼, ½, ¾ worked out by hand from each formula (v₀ = 2 m/s, T = 10 s).
@@ -322,65 +308,17 @@ fn bad_curves_name_the_field_and_value() {
 // 2. The drive
 // ---------------------------------------------------------------------------------------
 
-const RADIUS: f64 = 1.0;
-const INERTIA: f64 = 50.0;
+const RADIUS: f64 = LOOP_RADIUS;
+const INERTIA: f64 = LOOP_INERTIA;
 
-/// A horizontal 10 m two-pulley loop without gravity: pulleys of 1 m radius, 240 elements
-/// (6.3° each on the wraps, so the polygon's chordal speed ripple is 0.15 %), EA = 1 MN,
-/// 10 kg/m, the belt 0.5 % shorter than its path (about 5 kN of pretension). The drive
-/// pulley (0) has friction µ = 0.5; the other is frictionless (the belt slides round it).
-/// The drive starts the belt to 2 m/s over 1 s from t = 0.1 s.
+/// `common::belt_loop` whose drive pulley (0) has friction µ = 0.5 while the other is
+/// frictionless (the belt slides round it). The drive starts the belt to 2 m/s over 1 s
+/// from t = 0.1 s with the ramp `shape`, within `max_torque`.
 fn loop_scene(shape: StartShape, max_torque: f64) -> Scene {
-    let path = 2.0 * 10.0 + 2.0 * PI * RADIUS;
-    let pulley = |center: [f64; 2]| PulleySpec {
-        center,
-        radius: RADIUS,
-        mass: 100.0,
-        inertia: Some(INERTIA),
-        contact_stiffness: 1e7,
-        ..Default::default()
-    };
-    Scene {
-        belt: BeltParams {
-            axial_stiffness: 1e6,
-            mass_per_length: 10.0,
-            length: Some(path * 0.995),
-            elements: Some(240),
-            ..Default::default()
-        },
-        pulleys: vec![
-            PulleySpec {
-                friction: FrictionModel::StickForce {
-                    static_coefficient: 0.5,
-                    kinetic_coefficient: 0.5,
-                },
-                drive: Some(DriveSpec {
-                    start_curve: Some(StartCurve {
-                        shape,
-                        speed: 2.0,
-                        ramp: 1.0,
-                        start: 0.1,
-                        ..Default::default()
-                    }),
-                    max_torque,
-                    ..Default::default()
-                }),
-                ..pulley([0.0, 0.0])
-            },
-            pulley([10.0, 0.0]),
-        ],
-        gravity: 0.0,
-        ..Default::default()
-    }
-}
-
-/// The scene relaxed to static equilibrium (drives off): the belt at rest on its pulleys,
-/// without the ringing that the placement on the path would start.
-fn relaxed(scene: &Scene) -> Simulation {
-    let mut sim = Simulation::new(scene).unwrap();
-    let report = sim.stabilise(&StabiliseOptions::default()).unwrap();
-    assert!(report.converged);
-    sim
+    belt_loop(
+        start_drive(shape, max_torque),
+        [grip(), FrictionModel::None],
+    )
 }
 
 fn the_curve(sim: &Simulation, j: usize) -> StartCurve {

@@ -5,29 +5,17 @@ use beltrs::drives::brake::brake_prescription;
 use beltrs::drives::holdback::Holdback;
 use beltrs::drives::takeup::{apply_stops, carriage_speed};
 use beltrs::friction::Prescribed;
-use beltrs::record::Channels;
 use beltrs::scene::{
-    BeltParams, BrakeSpec, DriveSpec, FrictionModel, HoldbackSpec, PulleySpec, Scene, Table,
+    BrakeSpec, DriveSpec, HoldbackSpec, Scene, Table,
     TakeupKind, TakeupSpec, Wrap,
 };
-use beltrs::{BeltError, Simulation, StabiliseOptions, Stage, StartCurve};
+use beltrs::{BeltError, Simulation, Stage, StartShape};
+use crate::common::{
+    belt_loop, close, grip, relaxed, start_drive, LOOP_EA, LOOP_INERTIA, LOOP_RADIUS, LOOP_RHO,
+    LOOP_SPAN, PER_PULLEY_ONLY,
+};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
-
-const PER_PULLEY_ONLY: Channels = Channels {
-    tension: false,
-    node_position: false,
-    node_velocity: false,
-    energy: false,
-};
-
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e} (diff {:e}, allowed {tol:e})",
-        (got - want).abs()
-    );
-}
 
 // ---------------------------------------------------------------------------------------
 // 1. Kernels
@@ -191,76 +179,25 @@ fn carriage_speed_locks_and_limits() {
 // 2. A loop: power failure, brakes, holdbacks
 // ---------------------------------------------------------------------------------------
 
-const RADIUS: f64 = 1.0;
-const INERTIA: f64 = 50.0;
-const RHO: f64 = 10.0;
-const SPAN: f64 = 10.0;
-const EA: f64 = 1e6;
+const RADIUS: f64 = LOOP_RADIUS;
+const INERTIA: f64 = LOOP_INERTIA;
+const RHO: f64 = LOOP_RHO;
+const SPAN: f64 = LOOP_SPAN;
+const EA: f64 = LOOP_EA;
 
-fn friction() -> FrictionModel {
-    FrictionModel::StickForce {
-        static_coefficient: 0.5,
-        kinetic_coefficient: 0.5,
-    }
-}
-
-/// A horizontal 10 m two-pulley loop without gravity (as in `speed_drive.rs`): pulleys of
-/// 1 m radius and 50 kg·m², 240 elements, EA = 1 MN, 10 kg/m, the belt 0.5 % shorter than
-/// its path (~5 kN of pretension), friction µ = 0.5 on both pulleys. Pulley 0's drive
-/// starts the belt to 2 m/s over 1 s from t = 0.1 s (counter-clockwise).
+/// `common::belt_loop` with friction µ = 0.5 on both pulleys; pulley 0's drive starts the
+/// belt to 2 m/s over 1 s from t = 0.1 s (counter-clockwise).
 fn loop_scene() -> Scene {
-    let path = 2.0 * SPAN + 2.0 * PI * RADIUS;
-    let pulley = |center: [f64; 2]| PulleySpec {
-        center,
-        radius: RADIUS,
-        mass: 100.0,
-        inertia: Some(INERTIA),
-        contact_stiffness: 1e7,
-        friction: friction(),
-        ..Default::default()
-    };
-    Scene {
-        belt: BeltParams {
-            axial_stiffness: EA,
-            mass_per_length: RHO,
-            length: Some(path * 0.995),
-            elements: Some(240),
-            ..Default::default()
-        },
-        pulleys: vec![
-            PulleySpec {
-                drive: Some(DriveSpec {
-                    start_curve: Some(StartCurve {
-                        speed: 2.0,
-                        ramp: 1.0,
-                        start: 0.1,
-                        ..Default::default()
-                    }),
-                    ..Default::default()
-                }),
-                ..pulley([0.0, 0.0])
-            },
-            pulley([SPAN, 0.0]),
-        ],
-        gravity: 0.0,
-        ..Default::default()
-    }
+    belt_loop(
+        start_drive(StartShape::default(), f64::INFINITY),
+        [grip(), grip()],
+    )
 }
 
 /// Rigid-body inertia of the loop at the belt line, kg·m²: both pulleys and the belt's
 /// mass (its unstretched length × ρ) at radius r.
 fn loop_inertia(scene: &Scene) -> f64 {
     2.0 * INERTIA + RHO * scene.belt.length.unwrap() * RADIUS * RADIUS
-}
-
-fn relaxed(scene: &Scene) -> Simulation {
-    let mut sim = Simulation::new(scene).unwrap();
-    assert!(
-        sim.stabilise(&StabiliseOptions::default())
-            .unwrap()
-            .converged
-    );
-    sim
 }
 
 /// One run of the loop, step by step.

@@ -148,10 +148,16 @@ pub fn pulley_contact(
     force: &mut [V2],
     out: &mut PulleyContacts,
 ) -> V2 {
-    let (k, c) = (body.stiffness, body.damping);
     pulley_contact_law(window, x, v, body, force, out, |depth, approach| {
-        (k * depth + c * approach).max(0.0)
+        penalty(body, depth, approach)
     })
+}
+
+/// The linear penalty's normal force on a node `depth` (m) inside `body` approaching it at
+/// `approach` (m/s): k·depth + c·approach, never pulling, N.
+#[inline(always)]
+pub fn penalty(body: &PulleyBody, depth: f64, approach: f64) -> f64 {
+    (body.stiffness * depth + body.damping * approach).max(0.0)
 }
 
 /// [`pulley_contact`] with the normal force given by `law`(penetration, approach speed)

@@ -1,5 +1,6 @@
 //! Contact stages: the belt wrapping pulleys, belt elements on idlers.
 
+use super::nonlinear::NonlinearContact;
 use super::{wrap::ElementLaw, IdlerBody, PulleyBody};
 use crate::model::Stage;
 use crate::pipeline::StageContext;
@@ -36,39 +37,30 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             s.step.is_multiple_of(super::FULL_SCAN_INTERVAL),
         );
         let (window, contacts) = (&s.pulley_window[j], &mut sc.contacts[j]);
-        sc.pulley_force[j] = match &p.nonlinear {
-            // Kubas's nonlinear law, nodal (validation refuses it with wrap contact).
-            Some(nonlinear) => {
-                let mut nl = nonlinear.scaled(cx.contact_scale);
-                nl.damping = effects.damped(nl.damping);
-                super::pulley_contact_law(
-                    window,
-                    &s.position,
-                    &s.velocity,
-                    &body,
-                    &mut sc.force,
-                    contacts,
-                    |p, rate| nl.normal_force(p, rate),
-                )
-            }
-            None if m.wrap_contact => super::pulley_wrap_contact(
+        let (x, v) = (&s.position[..], &s.velocity[..]);
+        sc.pulley_force[j] = if m.wrap_contact && p.nonlinear.is_none() {
+            super::pulley_wrap_contact(
                 window,
-                &s.position,
-                &s.velocity,
+                x,
+                v,
                 &body,
                 &law,
                 &mut sc.force,
                 &mut sc.tension,
                 contacts,
-            ),
-            None => super::pulley_contact(
-                window,
-                &s.position,
-                &s.velocity,
-                &body,
-                &mut sc.force,
-                contacts,
-            ),
+            )
+        } else {
+            // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
+            // with wrap contact).
+            let nonlinear = p.nonlinear.map(|nl| NonlinearContact {
+                damping: effects.damped(nl.damping),
+                ..nl.scaled(cx.contact_scale)
+            });
+            let normal_force = |depth: f64, rate: f64| match &nonlinear {
+                Some(nl) => nl.normal_force(depth, rate),
+                None => super::penalty(&body, depth, rate),
+            };
+            super::pulley_contact_law(window, x, v, &body, &mut sc.force, contacts, normal_force)
         };
     }
 }

@@ -6,13 +6,10 @@
 
 use super::read::rule;
 use super::{
-    BrakeSpec, CreepFriction, DriveSpec, Formulation, FrictionModel, IntegratorKind, PulleyContact,
+    BrakeSpec, CreepFriction, Formulation, FrictionModel, IntegratorKind, PulleyContact,
     Table, TakeupKind, Wrap,
 };
-use crate::drives::controller::SpeedController;
-use crate::drives::motor::Motor;
-use crate::drives::sharing::TorqueFollow;
-use crate::start_curve::{StartCurve, StartShape};
+use crate::start_curve::StartShape;
 use crate::suggest::close_match;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
@@ -375,7 +372,7 @@ impl<'de> Deserialize<'de> for Numbers {
 
 /// A table from its two columns as given (`None`: the key is absent or `None`): both, or
 /// the ordinates alone when they hold one value (a constant, abscissa 0).
-fn table(
+pub(super) fn table(
     (xkey, x): (&str, Option<Numbers>),
     (ykey, y): (&str, Option<Numbers>),
 ) -> Result<Option<Table>, String> {
@@ -399,7 +396,7 @@ fn table(
     }
 }
 
-fn columns(t: &Table) -> (Option<Numbers>, Option<Numbers>) {
+pub(super) fn columns(t: &Table) -> (Option<Numbers>, Option<Numbers>) {
     if t.x.is_empty() && t.y.is_empty() {
         (None, None)
     } else {
@@ -407,87 +404,99 @@ fn columns(t: &Table) -> (Option<Numbers>, Option<Numbers>) {
     }
 }
 
-/// The `drive` table of a pulley, as written in a scene ([`DriveSpec`] in the engine).
-/// Defaults: those of [`DriveSpec::default`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct DriveKeys {
-    /// Abscissae of f, s, strictly increasing.
-    pub time: Option<Numbers>,
-    /// f(t), N·m.
-    pub torque: Option<Numbers>,
-    /// Abscissae of g, rad/s. `None`: g = 1.
-    pub speed: Option<Numbers>,
-    /// g(ω), dimensionless.
-    pub speed_factor: Option<Numbers>,
-    /// Viscous torque coefficient b, N·m·s/rad.
-    pub viscous: f64,
-    /// Added inertia, kg·m².
-    pub inertia: f64,
-    /// Starting curve of a speed-controlled drive.
-    pub start_curve: Option<StartCurve>,
-    /// Torque limit of a speed-controlled drive, N·m.
-    pub max_torque: f64,
-    /// PI speed controller.
-    pub controller: Option<SpeedController>,
-    /// Torque follower of another drive.
-    pub follow: Option<TorqueFollow>,
-    /// DOL induction motor.
-    pub motor: Option<Motor>,
-    /// Flywheel on the high-speed shaft, kg·m².
-    pub flywheel: f64,
-    /// Time the motor loses power, s.
-    pub power_off: Option<f64>,
-}
-
-impl Default for DriveKeys {
-    fn default() -> Self {
-        DriveSpec::default().into()
-    }
-}
-
-impl From<DriveSpec> for DriveKeys {
-    fn from(d: DriveSpec) -> Self {
-        let (time, torque) = columns(&d.torque);
-        let (speed, speed_factor) = columns(&d.speed_factor);
-        DriveKeys {
-            time,
-            torque,
-            speed,
-            speed_factor,
-            viscous: d.viscous,
-            inertia: d.inertia,
-            start_curve: d.start_curve,
-            max_torque: d.max_torque,
-            controller: d.controller,
-            follow: d.follow,
-            motor: d.motor,
-            flywheel: d.flywheel,
-            power_off: d.power_off,
+/// Declares [`DriveSpec`] and its scene form [`DriveKeys`] from one list of the keys they
+/// share (every key but the two tables), with the conversions between them, so that a
+/// new drive key is declared once (in `scene/mod.rs`). `#[serde(flatten)]` cannot share
+/// them: it does not work with `deny_unknown_fields` (a misspelt key would pass silently),
+/// and serde reads flattened keys from its own buffer, past the scene reader, whose
+/// messages name the path and suggest the key.
+macro_rules! drive_forms {
+    (
+        $(#[$spec_meta:meta])*
+        pub struct DriveSpec {
+            $(#[$torque_meta:meta])*
+            pub torque: Table,
+            $(#[$factor_meta:meta])*
+            pub speed_factor: Table,
+            $(
+                $(#[$meta:meta])*
+                pub $field:ident: $ty:ty,
+            )*
         }
-    }
-}
+    ) => {
+        $(#[$spec_meta])*
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(into = "DriveKeys", try_from = "DriveKeys")]
+        pub struct DriveSpec {
+            $(#[$torque_meta])*
+            pub torque: Table,
+            $(#[$factor_meta])*
+            pub speed_factor: Table,
+            $(
+                $(#[$meta])*
+                pub $field: $ty,
+            )*
+        }
 
-impl TryFrom<DriveKeys> for DriveSpec {
-    type Error = String;
-    fn try_from(k: DriveKeys) -> Result<Self, String> {
-        let d = DriveSpec::default();
-        Ok(DriveSpec {
-            torque: table(("time", k.time), ("torque", k.torque))?.unwrap_or(d.torque),
-            speed_factor: table(("speed", k.speed), ("speed_factor", k.speed_factor))?
-                .unwrap_or_default(),
-            viscous: k.viscous,
-            inertia: k.inertia,
-            start_curve: k.start_curve,
-            max_torque: k.max_torque,
-            controller: k.controller,
-            follow: k.follow,
-            motor: k.motor,
-            flywheel: k.flywheel,
-            power_off: k.power_off,
-        })
-    }
+        /// The `drive` table of a pulley, as written in a scene ([`DriveSpec`] in the
+        /// engine): its two tables as their columns, every other key as in [`DriveSpec`].
+        /// Defaults: those of [`DriveSpec::default`].
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(default, deny_unknown_fields)]
+        pub struct DriveKeys {
+            /// Abscissae of f, s, strictly increasing.
+            pub time: Option<forms::Numbers>,
+            /// f(t), N·m.
+            pub torque: Option<forms::Numbers>,
+            /// Abscissae of g, rad/s. `None`: g = 1.
+            pub speed: Option<forms::Numbers>,
+            /// g(ω), dimensionless.
+            pub speed_factor: Option<forms::Numbers>,
+            $(
+                $(#[$meta])*
+                pub $field: $ty,
+            )*
+        }
+
+        impl Default for DriveKeys {
+            fn default() -> Self {
+                DriveSpec::default().into()
+            }
+        }
+
+        impl From<DriveSpec> for DriveKeys {
+            fn from(d: DriveSpec) -> Self {
+                let (time, torque) = forms::columns(&d.torque);
+                let (speed, speed_factor) = forms::columns(&d.speed_factor);
+                DriveKeys {
+                    time,
+                    torque,
+                    speed,
+                    speed_factor,
+                    $($field: d.$field,)*
+                }
+            }
+        }
+
+        impl TryFrom<DriveKeys> for DriveSpec {
+            type Error = String;
+            fn try_from(k: DriveKeys) -> Result<Self, String> {
+                let d = DriveSpec::default();
+                Ok(DriveSpec {
+                    torque: forms::table(("time", k.time), ("torque", k.torque))?
+                        .unwrap_or(d.torque),
+                    speed_factor: forms::table(
+                        ("speed", k.speed),
+                        ("speed_factor", k.speed_factor),
+                    )?
+                    .unwrap_or_default(),
+                    $($field: k.$field,)*
+                })
+            }
+        }
+    };
 }
+pub(super) use drive_forms;
 
 /// The `brake` table of a pulley, as written in a scene ([`BrakeSpec`] in the engine).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

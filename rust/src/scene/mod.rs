@@ -41,7 +41,7 @@ mod validate;
 pub use ends::{BeltEndSpec, EndHold};
 
 pub(crate) use forms::required;
-pub use forms::{BrakeKeys, DriveKeys, FrictionKeys, FrictionKind};
+pub use forms::{BrakeKeys, FrictionKeys, FrictionKind};
 pub use initial::InitialState;
 pub use rules::{
     Formulation, IntegratorKind, DEFAULT_ABSOLUTE_TOLERANCE, DEFAULT_RELATIVE_TOLERANCE,
@@ -289,6 +289,9 @@ impl Table {
     }
 }
 
+// The drive's keys are declared once for the engine's type and its scene form
+// (`forms::drive_forms`).
+forms::drive_forms! {
 /// A drive on a pulley. Torque-controlled (thesis eq. 4.66): T(t, ω) = f(t)·g(ω) − b·ω.
 /// Speed-controlled (a VFD following a [`StartCurve`], `docs/drives.md`): each step the
 /// motor supplies the torque that makes the pulley follow the curve, within ±`max_torque`,
@@ -296,8 +299,6 @@ impl Table {
 ///
 /// In a scene its tables are the keys `time`/`torque` and `speed`/`speed_factor`
 /// ([`DriveKeys`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(into = "DriveKeys", try_from = "DriveKeys")]
 pub struct DriveSpec {
     /// f(t): torque against time, N·m, positive counter-clockwise. Default: 0.
     pub torque: Table,
@@ -333,6 +334,7 @@ pub struct DriveSpec {
     /// the pulley coasts; the load torque −b·ω stays. `None`: never. Default
     /// `None` (`docs/stops-takeups.md`).
     pub power_off: Option<f64>,
+}
 }
 
 impl Default for DriveSpec {
