@@ -372,3 +372,100 @@ def test_motor_turning_the_belt_backwards_warns():
     head.drive.motor.rotation = "ccw"
     with pytest.warns(beltrs.DriveDirectionWarning, match=r"drive\.motor\.rotation = 'ccw': runs the belt backwards"):
         beltrs.Simulation(scene)
+
+
+# --- fluid coupling tables and the motor's speed in results --------------------------------
+N_R, T_M, T_STALL, J_R = 150.0, 400.0, 900.0, 1.2
+TABLE = dict(slip=[0.02, 0.2, 1.0], torque=[300.0, 600.0, T_STALL])
+
+
+def held_rotor_scene(coupling):
+    """A motor of constant torque T_M (a flat table) behind ``coupling``, its output held at
+    rest by a brake on a pulley the belt does not touch (the slip stays 1)."""
+    motor = Motor(rated_power=2e4, rated_speed=N_R, synchronous_speed=157.08, speed=[0.0, 200.0],
+                  torque=[T_M, T_M], gear_ratio=20.0, rotor_inertia=J_R, coupling=coupling)
+    held = Pulley(name="held", center=(0.0, 0.0), radius=0.5, inertia=40.0, contact_stiffness=0.0,
+                  drive=Drive(motor=motor), brake=beltrs.Brake(torque=1e9))
+    other = Pulley(name="other", center=(10.0, 0.0), radius=0.5, inertia=40.0, contact_stiffness=1e7)
+    return Scene(belt=Belt(axial_stiffness=1e6, mass_per_length=10.0, elements=60), pulleys=[held, other],
+                 gravity=0.0, solver=beltrs.Solver(time_step=1e-4))
+
+
+def test_coupling_table_runs_a_held_rotor_up_as_tanh_from_python_and_a_scene_file(tmp_path):
+    """With the output held the coupling passes (n/n_r)^2 T_n(1), so the rotor runs up as
+    n_inf tanh(t/tau), n_inf = n_r sqrt(T_m/T_n(1)), tau = J_r n_inf/T_m (the closed form
+    of J_r n' = T_m - T_n(1) (n/n_r)^2). Result.motor_speed follows it within 1e-3 n_inf at
+    dt = 1e-4 s (explicit, first order; rust/tests/motor_start.rs checks the order), the
+    same through a TOML scene file and a dict."""
+    scene = held_rotor_scene(FluidCoupling(rated_speed=N_R, **TABLE))
+    path = tmp_path / "coupling.toml"
+    scene.save(path)
+    assert "slip = [0.02, 0.2, 1.0]" in path.read_text()
+    assert beltrs.load_scene(path) == scene == Scene.from_dict(scene.to_dict())
+    with pytest.warns(beltrs.NotRelaxedWarning):  # the belt plays no part: the held pulley does not touch it
+        res = beltrs.Simulation(beltrs.load_scene(path)).run(1.5, record_every=10)
+    n_inf = N_R * math.sqrt(T_M / T_STALL)
+    exact = n_inf * np.tanh(res.time * T_M / (J_R * n_inf))
+    assert np.all(res.pulley_speed[:, 0] == 0.0)
+    assert np.max(np.abs(res.motor_speed[:, 0] - exact)) < 1e-3 * n_inf
+    assert np.all(np.isnan(res.motor_speed[:, 1]))  # no motor on that pulley
+
+
+def test_motor_speed_of_a_rigidly_geared_motor_is_the_geared_pulley_speed(tmp_path):
+    motor = Motor(rated_power=2e3, rated_speed=150.0, synchronous_speed=157.08, gear_ratio=75.0, rotor_inertia=0.01)
+    sim, res = relaxed_run(loop(Drive(motor=motor), tail_viscous=100.0), 1.0, record_every=10)
+    np.testing.assert_allclose(res.motor_speed[:, 0], 75.0 * res.pulley_speed[:, 0], rtol=1e-12, atol=1e-12)
+    assert res.motor_speed[-1, 0] > 100.0
+    assert np.all(np.isnan(res.motor_speed[:, 1]))
+    back = beltrs.load_result(res.save(tmp_path / "r.npz"))
+    assert back == res and back.to_pandas()[("motor_speed", "head")].iloc[-1] == res.motor_speed[-1, 0]
+
+
+@pytest.mark.parametrize(
+    "table, message",
+    [
+        (dict(slip=[0.1, 0.05], torque=[1.0, 2.0]), r"coupling\.slip\[1\] = 0\.05: must increase strictly"),
+        (dict(slip=[0.1, 1.5], torque=[1.0, 2.0]), r"coupling\.slip\[1\] = 1\.5: must be in \[0, 1\]"),
+        (dict(slip=[0.1, 0.5], torque=[2.0, 1.0]), r"coupling\.torque\[1\] = 1: must not fall as the slip grows"),
+        (dict(slip=[0.0, 0.5], torque=[1.0, 2.0]), r"coupling\.torque\[0\] = 1: must be 0 at a slip of 0"),
+        (dict(slip=[0.1, 0.5], torque=[-1.0, 2.0]), r"coupling\.torque\[0\] = -1: must be ≥ 0 \(N·m"),
+        (dict(slip=[0.1, 0.5], torque=[1.0, math.inf]), r"coupling\.torque\[1\] = inf"),
+        (dict(slip=[0.1, 0.5]), r"coupling\.torque = missing: needed with"),
+        (dict(slip=[0.1, 0.5], torque=[1.0, 2.0], rated_slip=0.05),
+         r"coupling\.rated_slip = 0\.05: has no effect with a torque table"),
+    ],
+)
+def test_bad_coupling_tables_are_refused_on_every_path(table, message, tmp_path):
+    scene = held_rotor_scene(FluidCoupling(**table))
+    with pytest.raises(SceneError, match=message):
+        beltrs.Simulation(scene)
+    with pytest.raises(SceneError, match=message):
+        beltrs.Simulation(Scene.from_dict(scene.to_dict()))
+    with pytest.raises(SceneError, match=message):
+        beltrs.Simulation(Scene.from_toml(scene.to_toml()))
+    d = scene.to_dict()
+    d["pulleys"][0]["drive"]["motor"]["coupling"]["slip"] = "fast"
+    with pytest.raises(SceneError, match=r"coupling\.slip = 'fast': expected a list"):
+        Scene.from_dict(d)
+
+
+def test_pi_drive_at_a_running_start_begins_at_the_holding_torque():
+    """A builder conveyor started running (design state): the PI drive's first torque is
+    the torque that holds the drum (its integral primed, docs/drives.md), the same, to
+    1e-9, as the ideal speed follower's first torque, which the friction solve finds
+    independently; the speed starts on the design speed. Before priming the PI drive began
+    with no torque at all (an empty integral) and let the belt sag."""
+    from beltrs.conveyor import Conveyor, DriveSpec
+
+    first = {}
+    for ctrl in (None, SpeedController()):
+        c = Conveyor(profile=[(0, 0), (150, 0)], belt="ST1250", capacity=400.0, speed=2.0, start="running",
+                     drives=[DriveSpec("head", controller=ctrl)])
+        scene = c.scene()
+        j = scene.pulley_index("head")
+        res = beltrs.Simulation(scene).run(0.005, record_every=1)
+        first[ctrl is None] = res.drive_torque[0, j]
+        r = scene.pulleys[j].radius
+        np.testing.assert_allclose(np.abs(res.pulley_speed[:3, j]) * r, 2.0, rtol=1e-4)
+    assert first[True] < -500.0  # the head drum drives the belt clockwise
+    assert first[False] == pytest.approx(first[True], rel=1e-9)

@@ -160,7 +160,7 @@ def test_million_steps_recorded_every_step_stay_within_bound():
     assert np.all(np.isfinite(res.node_position))
     # Memory: the buffers never hold more than the bound (capacity, not just length).
     per_sample = sim.sample_bytes()
-    assert per_sample == 8 * (1 + 5 * 16 + 13 * 2)  # energies are opt-in: off here
+    assert per_sample == 8 * (1 + 5 * 16 + 14 * 2)  # energies are opt-in: off here
     assert sim._core.recording_allocated_bytes() <= bound * per_sample
 
 

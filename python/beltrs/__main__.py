@@ -352,6 +352,8 @@ def export_command(result_path: str, out_dir: Optional[str] = None) -> int:
     header, cols = ["time (s)"], [res.time]
     for q in PULLEY_SERIES:
         values = getattr(res, q)
+        if values is None:  # motor_speed in a result saved before beltrs recorded it
+            continue
         for j, name in enumerate(names):
             header.append(f"{q}[{name}] ({UNITS[q]})")
             cols.append(values[:, j])

@@ -43,6 +43,7 @@ UNITS: dict[str, str] = {
     "friction_force": "N",
     "contact_nodes": "1",
     "slipping_nodes": "1",
+    "motor_speed": "rad/s",
     "idler_force": "N",
     "idler_speed": "rad/s",
     "energy": "J",
@@ -66,6 +67,7 @@ DIMS: dict[str, tuple[str, ...]] = {
     "friction_force": ("time", "pulley"),
     "contact_nodes": ("time", "pulley"),
     "slipping_nodes": ("time", "pulley"),
+    "motor_speed": ("time", "pulley"),
     "idler_force": ("time", "idler"),
     "idler_speed": ("time", "idler"),
     "energy": ("time", "energy_term"),
@@ -87,6 +89,7 @@ _DESCRIPTION: dict[str, str] = {
     "friction_force": "sum of tangential friction forces on the pulley",
     "contact_nodes": "belt nodes touching the pulley",
     "slipping_nodes": "belt nodes slipping on the pulley",
+    "motor_speed": "DOL motor speed at its shaft, in the motor's sense of rotation (NaN: no motor)",
     "idler_force": "idler normal force",
     "idler_speed": "idler angular speed",
     "energy": "energies (terms: coordinate energy_term)",
@@ -107,6 +110,7 @@ PULLEY_SERIES = (
     "friction_force",
     "contact_nodes",
     "slipping_nodes",
+    "motor_speed",
 )
 #: Scalar attributes of a Result and their types, saved beside the arrays.
 _SCALARS = {
@@ -162,6 +166,12 @@ class Result:
         friction_force: ``[n, P]`` sum of tangential friction forces on the pulley, N.
         contact_nodes: ``[n, P]`` nodes touching each pulley (int64 count).
         slipping_nodes: ``[n, P]`` of those, nodes slipping (int64 count).
+        motor_speed: ``[n, P]`` speed of each pulley's DOL motor (:class:`beltrs.Motor`)
+            at the motor shaft, rad/s, positive in the motor's sense of rotation
+            (``rotation``): the pulley speed times ``gear_ratio`` when geared rigidly, the
+            rotor's own speed behind a :class:`beltrs.FluidCoupling` (their difference is
+            the coupling's slip). NaN for pulleys without a motor; None in results saved
+            before beltrs recorded it.
         idler_force: ``[n, I]`` idler normal force, N.
         idler_speed: ``[n, I]`` idler angular speed, rad/s.
         energy: ``[n, 7]`` J, or None unless the run asked for it (``energy=True``);
@@ -205,6 +215,7 @@ class Result:
     idler_speed: np.ndarray
     energy: Optional[np.ndarray]
     energy_columns: list[str]
+    motor_speed: Optional[np.ndarray] = None
     dt: float = 0.0
     stages: list[str] = field(default_factory=list)
     wall_time: float = 0.0
@@ -640,8 +651,9 @@ class Result:
         Index: ``time`` (s). Columns: a two-level index (quantity, pulley name) over
         takeup_travel (m), pulley_speed (rad/s), drive_torque (N*m), drive_power (W),
         brake_torque (N*m), friction_torque (N*m), normal_force (N), friction_force (N),
-        contact_nodes and slipping_nodes (int64 counts). ``df.attrs["units"]`` maps each
-        quantity to its unit.
+        contact_nodes and slipping_nodes (int64 counts), motor_speed (rad/s; NaN without a
+        motor; absent from results saved before beltrs recorded it). ``df.attrs["units"]``
+        maps each quantity to its unit.
 
         >>> df = res.to_pandas()
         >>> df[("drive_torque", "head")].max()
@@ -652,13 +664,14 @@ class Result:
         """
         pd = _require("pandas", "Result.to_pandas")
         names = list(self.pulley_names) or [str(j) for j in range(self.takeup_travel.shape[1])]
-        columns = pd.MultiIndex.from_product([list(PULLEY_SERIES), names], names=["quantity", "pulley"])
+        series = [q for q in PULLEY_SERIES if q == "drive_power" or getattr(self, q) is not None]
+        columns = pd.MultiIndex.from_product([series, names], names=["quantity", "pulley"])
         frame = pd.DataFrame(
-            {(q, p): getattr(self, q)[:, j] for q in PULLEY_SERIES for j, p in enumerate(names)},
+            {(q, p): getattr(self, q)[:, j] for q in series for j, p in enumerate(names)},
             index=pd.Index(self.time, name="time"),
             columns=columns,
         )
-        frame.attrs["units"] = {q: UNITS[q] for q in PULLEY_SERIES} | {"time": "s"}
+        frame.attrs["units"] = {q: UNITS[q] for q in series} | {"time": "s"}
         return frame
 
 

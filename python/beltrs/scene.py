@@ -340,12 +340,22 @@ class FluidCoupling(_Table):
         rated_slip: s_r, in (0, 1). Default 0.03.
         stall_torque_ratio: k, torque at stall (output at rest) / rated torque at the same
             input speed, in (1, 1/rated_slip). Default 5.
+        slip: slips of a torque table that replaces the hyperbola (the maker's curve),
+            dimensionless, strictly increasing in [0, 1], at least two. Default None.
+        torque: the table's torques, N*m, passed at input speed ``rated_speed`` (the
+            motor's rated speed by default): finite, >= 0, non-decreasing, 0 at a slip of 0,
+            > 0 at the last slip. Linear between the points, from (0, 0) to the first, held
+            beyond the last; T = (n_p/rated_speed)^2 * torque(s), odd in s. With a table,
+            leave ``rated_torque``, ``rated_slip`` and ``stall_torque_ratio`` out.
+            Default None.
     """
 
     rated_torque: Optional[float]
     rated_speed: Optional[float]
     rated_slip: float
     stall_torque_ratio: float
+    slip: Optional[Sequence[float]]
+    torque: Optional[Sequence[float]]
 
     def __post_init__(self) -> None:
         _normalise(self)

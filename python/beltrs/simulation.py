@@ -432,7 +432,7 @@ class Simulation:
                 spans the whole run on a uniform grid (``Result.record_every`` gives the
                 final interval in steps). Default None: as many as fit in ``max_memory``.
             max_memory: bound on the recording's memory when ``max_samples`` is None, bytes.
-                One instant takes ``8 * (8 + 5*E + 13*P + 2*I)`` bytes with every channel on
+                One instant takes ``8 * (8 + 5*E + 14*P + 2*I)`` bytes with every channel on
                 (E nodes, P pulleys, I idlers; tension, node_position, node_velocity and
                 energy switched off save 8*E, 16*E, 16*E and 56); see :meth:`sample_bytes`.
                 Default 256 MiB.
@@ -622,7 +622,7 @@ class Simulation:
         self, tension: bool = True, node_position: bool = True, node_velocity: bool = True, energy: bool = False
     ) -> int:
         """Bytes one recorded instant takes with these channels:
-        ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
+        ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 14*P + 2*I)``."""
         return int(
             self._core.sample_bytes(
                 _flag("tension", tension),

@@ -36,11 +36,15 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Compile a scene and place the belt at rest on its initial path.
+    /// Compile a scene and place the belt on its initial path: at rest, or in its design
+    /// state (`[initial]`) with the drives' memory primed to hold it
+    /// (`crate::drives::prime`).
     pub fn new(scene: &Scene) -> BeltResult<Simulation> {
         let model = Model::compile(scene)?;
         let state = State::initial(&model);
-        Ok(Self::from_parts(model, state))
+        let mut sim = Self::from_parts(model, state);
+        sim.prime_drives();
+        Ok(sim)
     }
 
     /// A simulation of `model` at `state` (e.g. read back from a checkpoint). The state's

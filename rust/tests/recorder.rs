@@ -52,6 +52,6 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
     assert_eq!(r.time[last].to_bits(), bounded.state.time.to_bits());
     // Memory: capacity never grew past the bound.
     let per = r.bytes_per_sample();
-    assert_eq!(per, 8 * (8 + 5 * 89 + 13 * 2));
+    assert_eq!(per, 8 * (8 + 5 * 89 + 14 * 2));
     assert!(bounded.recording.allocated_bytes() <= max * per);
 }

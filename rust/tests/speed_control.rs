@@ -5,7 +5,7 @@ use beltrs::checkpoint;
 use beltrs::drives::controller::{gains, SpeedController};
 use beltrs::drives::sharing::TorqueFollow;
 use beltrs::record::Channels;
-use beltrs::scene::{DriveSpec, Scene, Table};
+use beltrs::scene::{DriveSpec, InitialState, Scene, Table};
 use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
 use crate::common::{close, free_pulley};
 
@@ -382,3 +382,53 @@ fn checkpoint_without_drive_memory_reads_as_zero_memory() {
         .all(|m| *m == Default::default()));
 }
 
+/// A PI drive at a running design start (`[initial]`, the curve already ended) holds its
+/// speed from t = 0: its integral starts at the torque that holds the pulley, here the
+/// drive's viscous load b·ω₀ (1 kN·m), so the speed stays at ω₀ to rounding; also with a
+/// torque lag (the lagged torque starts there too). With droop the first step's net
+/// torque is zero (the speed then drifts to its drooped value, as droop asks). An empty
+/// integral, as before priming, lets the pulley sag by ~0.7 rad/s (b·ω₀/(J·ω_c·e)).
+#[test]
+fn pi_drive_at_a_running_start_holds_its_speed_from_the_start() {
+    let (b, w0) = (500.0, 2.0);
+    let run = |tau: f64, droop: f64, primed: bool| {
+        let mut scene = rigid_scene(f64::INFINITY, 1e-4);
+        let d = scene.pulleys[0].drive.as_mut().unwrap();
+        d.viscous = b;
+        d.start_curve.as_mut().unwrap().start = -2.0; // at 2 rad/s since t = −1 s
+        let c = d.controller.as_mut().unwrap();
+        c.torque_time_constant = tau;
+        if droop > 0.0 {
+            c.droop = droop;
+            c.rated_torque = Some(2.0 * b * w0);
+        }
+        scene.initial = Some(InitialState {
+            tension: vec![1000.0],
+            speed: w0 * RADIUS,
+            ..Default::default()
+        });
+        scene.recording.stabilise = false;
+        let mut sim = Simulation::new(&scene).unwrap();
+        assert_eq!(sim.state.pulley_omega[0], w0, "turns counter-clockwise at ω₀");
+        if !primed {
+            sim.state.drive_memory[0] = Default::default();
+        }
+        sim.begin_recording(Channels::default(), 10, usize::MAX);
+        sim.advance(10_000).unwrap();
+        sim.end_recording().unwrap();
+        let r = &sim.recording;
+        let sag = (0..r.time.len())
+            .map(|k| (r.pulley_speed[2 * k] - w0).abs())
+            .fold(0.0, f64::max);
+        (sag, r.drive_torque[0])
+    };
+    for tau in [0.0, 0.01] {
+        let (sag, net) = run(tau, 0.0, true);
+        assert!(sag <= 1e-12 * w0, "τ = {tau}: speed left ω₀ by {sag:e} rad/s");
+        assert!(net.abs() <= 1e-9 * b * w0, "τ = {tau}: net drive torque {net:e}");
+    }
+    let (_, net) = run(0.0, 0.05, true);
+    assert!(net.abs() <= 1e-9 * b * w0, "droop: net drive torque {net:e}");
+    let (sag, _) = run(0.0, 0.0, false);
+    assert!(sag > 0.5, "an empty integral sags by {sag} rad/s only");
+}

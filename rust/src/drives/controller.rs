@@ -331,6 +331,40 @@ pub fn advance(
     }
 }
 
+/// Start every powered PI controller of `m` so that its first command is the torque that
+/// holds its pulley (and its followers' pulleys) in the state `s`: `holding[j]` is pulley
+/// j's holding torque, N·m (`super::prime`, which explains the choice).
+pub fn prime(m: &Model, s: &mut State, holding: &[f64]) {
+    for (j, p) in m.pulleys.iter().enumerate() {
+        let (Some(c), Some(d)) = (&p.control, &p.drive) else {
+            continue;
+        };
+        let Some(curve) = &d.start_curve else {
+            continue;
+        };
+        if !d.powered(s.time) {
+            continue;
+        }
+        // Least squares over the master (factor 1) and its followers (their factors).
+        let (mut num, mut den) = (holding[j], 1.0);
+        for (k, q) in m.pulleys.iter().enumerate() {
+            if let Some(f) = q.follow.filter(|f| f.master == j) {
+                num += f.factor * holding[k];
+                den += f.factor * f.factor;
+            }
+        }
+        let torque = (num / den).clamp(-c.max_torque, c.max_torque);
+        let error = curve.speed_at(s.time - 0.5 * m.dt) / p.radius - s.pulley_omega[j];
+        let mem = &mut s.drive_memory[j];
+        if c.ki > 0.0 {
+            mem.integral = (torque * (1.0 + c.kp * c.droop) - c.kp * error) / c.ki;
+        }
+        if c.tau > 0.0 {
+            mem.torque = torque;
+        }
+    }
+}
+
 /// Explicit stability limit of central differences for a PI controller on a pulley of
 /// inertia `inertia` (kg·m²): the damper K_p and the spring K_i on the pulley alone,
 /// Δt = (2/ω)(√(1+ζ²) − ζ) with ω² = K_i/I and ζ = K_p/(2√(K_i·I)); the damper alone

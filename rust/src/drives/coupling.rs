@@ -11,9 +11,15 @@
 //! linear at small slip (as a coupling is near its running point) and flattening towards
 //! stall; it needs 1 < k < 1/s_r (b > 0). It is odd in the slip: an overrunning belt drives
 //! the motor back through the coupling.
+//!
+//! **A table** (`slip`, `torque`) replaces the hyperbola with the maker's curve: the torque
+//! T_n(s) passed at the input speed n_r (`rated_speed`), linear between the points, from
+//! (0, 0) to the first point and held beyond the last; T = (n_p/n_r)²·T_n(s), odd in s.
+//! It must rise with the slip (a constant-fill coupling passes more torque the more it
+//! slips) and start from no torque at no slip.
 
 use crate::error::{BeltError, BeltResult};
-use crate::scene::check_finite;
+use crate::scene::{check_finite, Table};
 use serde::{Deserialize, Serialize};
 
 /// A constant-fill fluid coupling (`[pulleys.drive.motor.coupling]`).
@@ -31,6 +37,14 @@ pub struct FluidCoupling {
     /// Stall torque / rated torque k at the same input speed (output at rest), in
     /// (1, 1/s_r). Default 5.
     pub stall_torque_ratio: f64,
+    /// Slips of a torque table that replaces the hyperbola (module docs), dimensionless,
+    /// strictly increasing in [0, 1], at least two. Default none.
+    pub slip: Option<Vec<f64>>,
+    /// The table's torques, N·m, passed at input speed `rated_speed` (the motor's rated
+    /// speed by default): finite, ≥ 0, non-decreasing, 0 at a slip of 0, > 0 at the last
+    /// slip. With `slip`; `rated_torque`, `rated_slip` and `stall_torque_ratio` are then
+    /// the hyperbola's and must be left out. Default none.
+    pub torque: Option<Vec<f64>>,
 }
 
 impl Default for FluidCoupling {
@@ -40,6 +54,8 @@ impl Default for FluidCoupling {
             rated_speed: None,
             rated_slip: 0.03,
             stall_torque_ratio: 5.0,
+            slip: None,
+            torque: None,
         }
     }
 }
@@ -57,6 +73,9 @@ impl FluidCoupling {
                     return Err(BeltError::invalid(format!("{f}.{k}"), v, "must be > 0"));
                 }
             }
+        }
+        if self.slip.is_some() || self.torque.is_some() {
+            return self.validate_table(f);
         }
         check_finite(&format!("{f}.rated_slip"), self.rated_slip)?;
         if !(self.rated_slip > 0.0 && self.rated_slip < 1.0) {
@@ -80,10 +99,112 @@ impl FluidCoupling {
         }
         Ok(())
     }
+
+    /// The rules of a torque table (`slip`, `torque`; `rated_speed` checked by `validate`).
+    fn validate_table(&self, f: &str) -> BeltResult<()> {
+        let (x, y) = match (&self.slip, &self.torque) {
+            (Some(x), Some(y)) => (x, y),
+            (Some(_), None) => {
+                return Err(BeltError::invalid(
+                    format!("{f}.torque"),
+                    "missing",
+                    format!("needed with {f}.slip: the torque (N·m) at each slip"),
+                ))
+            }
+            _ => {
+                return Err(BeltError::invalid(
+                    format!("{f}.slip"),
+                    "missing",
+                    format!("needed with {f}.torque: the slip (0 to 1) of each torque"),
+                ))
+            }
+        };
+        let defaults = FluidCoupling::default();
+        for (key, given, default) in [
+            ("rated_slip", self.rated_slip, defaults.rated_slip),
+            (
+                "stall_torque_ratio",
+                self.stall_torque_ratio,
+                defaults.stall_torque_ratio,
+            ),
+        ]
+        .into_iter()
+        .chain(self.rated_torque.map(|t| ("rated_torque", t, f64::NAN)))
+        {
+            if given.to_bits() != default.to_bits() {
+                return Err(BeltError::invalid(
+                    format!("{f}.{key}"),
+                    given,
+                    format!("has no effect with a torque table ({f}.slip/torque replace the characteristic): leave it out"),
+                ));
+            }
+        }
+        if x.len() != y.len() || x.len() < 2 {
+            return Err(BeltError::invalid(
+                format!("{f}.torque"),
+                format!("{} values", y.len()),
+                format!(
+                    "needs as many values as {f}.slip ({}), at least 2",
+                    x.len()
+                ),
+            ));
+        }
+        for (i, (&s, &t)) in x.iter().zip(y).enumerate() {
+            check_finite(&format!("{f}.slip[{i}]"), s)?;
+            check_finite(&format!("{f}.torque[{i}]"), t)?;
+            if !(0.0..=1.0).contains(&s) {
+                return Err(BeltError::invalid(
+                    format!("{f}.slip[{i}]"),
+                    s,
+                    "must be in [0, 1] (slip = (n_in − n_out)/n_in, dimensionless)",
+                ));
+            }
+            if i > 0 && s <= x[i - 1] {
+                return Err(BeltError::invalid(
+                    format!("{f}.slip[{i}]"),
+                    s,
+                    format!("must increase strictly (previous value {})", x[i - 1]),
+                ));
+            }
+            if t < 0.0 {
+                return Err(BeltError::invalid(
+                    format!("{f}.torque[{i}]"),
+                    t,
+                    "must be ≥ 0 (N·m passed from the motor to the load at this slip)",
+                ));
+            }
+            if i > 0 && t < y[i - 1] {
+                return Err(BeltError::invalid(
+                    format!("{f}.torque[{i}]"),
+                    t,
+                    format!(
+                        "must not fall as the slip grows (previous value {} N·m): a fluid coupling passes more torque the more it slips",
+                        y[i - 1]
+                    ),
+                ));
+            }
+            if s == 0.0 && t != 0.0 {
+                return Err(BeltError::invalid(
+                    format!("{f}.torque[{i}]"),
+                    t,
+                    "must be 0 at a slip of 0: a fluid coupling passes torque only by slipping",
+                ));
+            }
+        }
+        let last = y[y.len() - 1];
+        if last <= 0.0 {
+            return Err(BeltError::invalid(
+                format!("{f}.torque[{}]", y.len() - 1),
+                last,
+                "must be > 0 (N·m): a coupling that passes no torque drives nothing",
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// A compiled coupling.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CouplingModel {
     /// T_r, N·m.
     pub rated_torque: f64,
@@ -93,17 +214,42 @@ pub struct CouplingModel {
     pub rated_slip: f64,
     /// b of the characteristic.
     pub shape: f64,
+    /// The torque table T_n(s) at input speed n_r (slip, N·m), starting at (0, 0); `None`:
+    /// the hyperbola.
+    pub table: Option<Table>,
 }
 
 impl CouplingModel {
     /// Compile `c` for a motor of rated torque and speed `motor_torque`, `motor_speed`.
     pub fn compile(c: &FluidCoupling, motor_torque: f64, motor_speed: f64) -> CouplingModel {
         let k = c.stall_torque_ratio;
+        let table = c.slip.as_ref().zip(c.torque.as_ref()).map(|(x, y)| {
+            let mut t = Table {
+                x: x.clone(),
+                y: y.clone(),
+            };
+            if t.x[0] > 0.0 {
+                t.x.insert(0, 0.0);
+                t.y.insert(0, 0.0);
+            }
+            t
+        });
         CouplingModel {
             rated_torque: c.rated_torque.unwrap_or(motor_torque),
             rated_speed: c.rated_speed.unwrap_or(motor_speed),
             rated_slip: c.rated_slip,
             shape: (1.0 - k * c.rated_slip) / (k - 1.0),
+            table,
+        }
+    }
+
+    /// Torque passed at the input speed n_r and slip `slip` ≥ 0, N·m: T_r·φ(s), or the
+    /// table's T_n(s).
+    #[inline]
+    pub fn torque_at_rated_speed(&self, slip: f64) -> f64 {
+        match &self.table {
+            None => self.rated_torque * self.characteristic(slip),
+            Some(t) => t.eval(slip),
         }
     }
 
@@ -123,13 +269,22 @@ impl CouplingModel {
         }
         let slip = (input - output) / pump;
         let q = pump / self.rated_speed;
-        self.rated_torque * q * q * self.characteristic(slip.abs()).copysign(slip)
+        q * q * self.torque_at_rated_speed(slip.abs()).copysign(slip)
     }
 
-    /// Largest |∂T/∂(n_in − n_out)| up to a pump speed `top` (rad/s), N·m·s/rad: at zero
-    /// slip, T_r·top·φ′(0)/n_r² with φ′(0) = (1 + b)/s_r.
+    /// Largest |∂T/∂(n_in − n_out)| up to a pump speed `top` (rad/s), N·m·s/rad:
+    /// top·max T_n′(s)/n_r², at zero slip for the hyperbola (T_n′(0) = T_r·(1 + b)/s_r), on
+    /// the steepest segment for a table.
     pub fn max_slope(&self, top: f64) -> f64 {
-        self.rated_torque * top * (1.0 + self.shape)
-            / (self.rated_slip * self.rated_speed * self.rated_speed)
+        let steepest = match &self.table {
+            None => self.rated_torque * (1.0 + self.shape) / self.rated_slip,
+            Some(t) => t
+                .x
+                .windows(2)
+                .zip(t.y.windows(2))
+                .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+                .fold(0.0, f64::max),
+        };
+        top * steepest / (self.rated_speed * self.rated_speed)
     }
 }

@@ -17,6 +17,8 @@
 //! - [`sharing`]: load sharing, master–slave torque followers.
 //! - [`motor`]: the `motors` stage, induction motors started direct on line (Kloss curve
 //!   or a table) through a gearbox; [`coupling`]: fluid couplings.
+//! - [`prime`]: the drives' memory at a design start (PI integrals at the holding torque,
+//!   coupled motors at their running point).
 
 pub mod bearing;
 pub mod brake;
@@ -25,6 +27,7 @@ pub mod coupling;
 pub mod hold;
 pub mod holdback;
 pub mod motor;
+pub mod prime;
 pub mod resistance;
 pub mod sharing;
 pub mod start_curve;

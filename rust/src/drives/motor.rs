@@ -398,3 +398,64 @@ pub fn advance_all(m: &Model, s: &mut State, sc: &Scratch, kick: f64) {
         }
     }
 }
+
+/// Start the rotor of every fluid-coupled motor of `m` whose pulley turns in the state `s`
+/// at its running point on the coupling (`super::prime`): the speed n where the motor's
+/// torque (0 if it is off at this time) equals the coupling's, T_motor(n) =
+/// T_coupling(n, σ·i·ω). A pulley at rest leaves the rotor at rest (a motor switched on at
+/// t = 0 starts from standstill).
+pub fn prime(m: &Model, s: &mut State) {
+    for (j, p) in m.pulleys.iter().enumerate() {
+        let Some(mm) = &p.motor else { continue };
+        let Some(c) = &mm.coupling else { continue };
+        if s.pulley_omega[j] == 0.0 {
+            continue;
+        }
+        let on = s.time >= mm.start && p.drive.as_ref().is_none_or(|d| d.powered(s.time));
+        let shaft = mm.factor * s.pulley_omega[j];
+        let excess = |n: f64| {
+            let motor = if on { mm.curve.torque(n) } else { 0.0 };
+            motor - c.torque(n, shaft)
+        };
+        if let Some(n) = root_from(shaft, excess) {
+            s.drive_memory[j].motor_speed = n;
+        }
+    }
+}
+
+/// The root of `f` nearest `x0` on the side where f(x0) points (f decreasing through it, as
+/// the rotor's excess torque through a running point), by doubling steps then bisection;
+/// `None` if no sign change is found within 2⁶⁰ × the first step.
+fn root_from(x0: f64, f: impl Fn(f64) -> f64) -> Option<f64> {
+    let f0 = f(x0);
+    if f0 == 0.0 {
+        return Some(x0);
+    }
+    let side = f0.signum();
+    let mut step = 1e-3 * x0.abs().max(1e-3);
+    let mut far = x0 + side * step;
+    let mut near = x0;
+    let mut tries = 0;
+    while f(far).signum() == side {
+        near = far;
+        step *= 2.0;
+        far = x0 + side * step;
+        tries += 1;
+        if tries > 60 {
+            return None;
+        }
+    }
+    // f(near) has f0's sign, f(far) the other.
+    for _ in 0..200 {
+        let mid = 0.5 * (near + far);
+        if mid == near || mid == far {
+            break;
+        }
+        if f(mid).signum() == side {
+            near = mid;
+        } else {
+            far = mid;
+        }
+    }
+    Some(0.5 * (near + far))
+}

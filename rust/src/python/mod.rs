@@ -573,6 +573,7 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
         friction_force,
         contact_nodes,
         slipping_nodes,
+        motor_speed,
         idler_force,
         idler_speed,
         energy,
@@ -599,6 +600,7 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("friction_force", own(friction_force, &[t, p])?)?;
     d.set_item("contact_nodes", own(contact_nodes, &[t, p])?)?;
     d.set_item("slipping_nodes", own(slipping_nodes, &[t, p])?)?;
+    d.set_item("motor_speed", own(motor_speed, &[t, p])?)?;
     d.set_item("idler_force", own(idler_force, &[t, q])?)?;
     d.set_item("idler_speed", own(idler_speed, &[t, q])?)?;
     if channels.energy {

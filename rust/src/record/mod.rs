@@ -55,7 +55,9 @@ impl Energies {
 }
 
 /// Recorded results. Every buffer is row-major with the shapes documented per field.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// Two recordings are equal when they hold the same values bit for bit (so the NaN motor
+/// speeds of pulleys without a motor compare equal).
+#[derive(Debug, Clone, Default)]
 pub struct Recording {
     /// Channels being recorded.
     pub channels: Channels,
@@ -99,6 +101,11 @@ pub struct Recording {
     pub contact_nodes: Vec<f64>,
     /// Slipping nodes on each pulley. `[n_out, n_pulleys]`.
     pub slipping_nodes: Vec<f64>,
+    /// Speed of each pulley's DOL motor at its shaft, rad/s, positive in the motor's sense
+    /// of rotation (`crate::drives::motor`): the pulley speed times the gear ratio when the
+    /// motor is geared rigidly, the rotor's own speed behind a fluid coupling; NaN for a
+    /// pulley without a motor. `[n_out, n_pulleys]`.
+    pub motor_speed: Vec<f64>,
     /// Idler normal force, N. `[n_out, n_idlers]`.
     pub idler_force: Vec<f64>,
     /// Idler speed, rad/s. `[n_out, n_idlers]`.
@@ -123,6 +130,9 @@ pub enum Part {
     Model,
 }
 
+/// Index of [`Recording::motor_speed`] in the buffers' fixed order.
+const MOTOR_SPEED: usize = 15;
+
 /// Column names of [`Recording::energy`].
 pub const ENERGY_COLUMNS: [&str; 7] = [
     "kinetic",
@@ -133,6 +143,21 @@ pub const ENERGY_COLUMNS: [&str; 7] = [
     "total",
     "drive_work",
 ];
+
+impl PartialEq for Recording {
+    fn eq(&self, other: &Self) -> bool {
+        let bits = |a: &Vec<f64>, b: &Vec<f64>| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        let (mut a, mut b) = (self.clone(), other.clone());
+        (a.channels, a.nodes, a.elements, a.pulleys, a.idlers)
+            == (b.channels, b.nodes, b.elements, b.pulleys, b.idlers)
+            && a.buffers_mut()
+                .into_iter()
+                .zip(b.buffers_mut())
+                .all(|(x, y)| bits(x, y))
+    }
+}
 
 impl Recording {
     /// Empty recording for a model's sizes.
@@ -164,7 +189,7 @@ impl Recording {
     }
 
     /// Every buffer, in a fixed order (the order of [`Recording::row_widths`]).
-    fn buffers_mut(&mut self) -> [&mut Vec<f64>; 18] {
+    fn buffers_mut(&mut self) -> [&mut Vec<f64>; 19] {
         [
             &mut self.time,
             &mut self.tension,
@@ -181,6 +206,7 @@ impl Recording {
             &mut self.friction_force,
             &mut self.contact_nodes,
             &mut self.slipping_nodes,
+            &mut self.motor_speed,
             &mut self.idler_force,
             &mut self.idler_speed,
             &mut self.energy,
@@ -188,7 +214,7 @@ impl Recording {
     }
 
     /// Values each buffer gains per recorded instant, same order as the buffers.
-    fn row_widths(&self) -> [usize; 18] {
+    fn row_widths(&self) -> [usize; 19] {
         let (n, p, q) = (self.nodes, self.pulleys, self.idlers);
         let c = &self.channels;
         [
@@ -207,13 +233,14 @@ impl Recording {
             p,
             p,
             p,
+            p,
             q,
             q,
             if c.energy { ENERGY_COLUMNS.len() } else { 0 },
         ]
     }
 
-    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 13·p + 2·q) with all
+    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 14·p + 2·q) with all
     /// channels on (n nodes, p pulleys, q idlers); the channels that are off drop out (the
     /// energies' 7 of the 8).
     pub fn bytes_per_sample(&self) -> usize {
@@ -271,7 +298,10 @@ impl Recording {
             .enumerate()
             .find_map(|(b, (buf, w))| {
                 let row = &buf[buf.len() - w..];
-                row.iter().position(|v| !v.is_finite()).map(|o| (b, o))
+                // Motor speeds are NaN where a pulley has no motor; a motor's own speed
+                // that goes non-finite shows in its drive torque.
+                let bad = |v: &f64| if b == MOTOR_SPEED { v.is_infinite() } else { !v.is_finite() };
+                row.iter().position(bad).map(|o| (b, o))
             })?;
         let xy = if offset % 2 == 0 { "x" } else { "y" };
         Some(match buffer {
@@ -290,8 +320,9 @@ impl Recording {
             12 => ("friction force".into(), Part::Pulley(offset)),
             13 => ("contact count".into(), Part::Pulley(offset)),
             14 => ("slipping count".into(), Part::Pulley(offset)),
-            15 => ("normal force".into(), Part::Idler(offset)),
-            16 => ("angular speed".into(), Part::Idler(offset)),
+            MOTOR_SPEED => ("motor speed".into(), Part::Pulley(offset)),
+            16 => ("normal force".into(), Part::Idler(offset)),
+            17 => ("angular speed".into(), Part::Idler(offset)),
             _ => (
                 format!(
                     "{} energy",

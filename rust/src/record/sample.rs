@@ -4,7 +4,10 @@
 use super::Energies;
 use crate::model::Stage;
 use crate::simulation::Simulation;
-use crate::state::Rigid;
+use crate::integrate::Inertia;
+use crate::model::Model;
+use crate::pipeline::Scratch;
+use crate::state::{Rigid, State};
 
 impl Simulation {
     /// Energies at the current state; call right after an evaluation (uses the
@@ -137,6 +140,7 @@ impl Simulation {
             r.friction_force.push(sc.friction[j].tangential);
             r.contact_nodes.push(sc.contacts[j].len() as f64);
             r.slipping_nodes.push(sc.friction[j].slipping as f64);
+            r.motor_speed.push(motor_speed(m, s, sc, &self.inertia, j, half));
         }
         for k in 0..m.idlers.len() {
             let c = &sc.idler_contacts[k];
@@ -154,6 +158,40 @@ impl Simulation {
                 e.total(),
                 e.drive_work,
             ]);
+        }
+    }
+}
+
+/// Speed of pulley `j`'s DOL motor at its shaft at t, rad/s, in the motor's sense of
+/// rotation (NaN without a motor), centred from the half step (`half`, s) as every
+/// recorded speed: σ·i·ω when geared rigidly; behind a fluid coupling the rotor's own
+/// speed moved by half a step of (T_motor − T_coupling)/J_r.
+fn motor_speed(
+    m: &Model,
+    s: &State,
+    sc: &Scratch,
+    inertia: &Inertia,
+    j: usize,
+    half: f64,
+) -> f64 {
+    let Some(mm) = &m.pulleys[j].motor else {
+        return f64::NAN;
+    };
+    match mm.coupling {
+        None => {
+            let d = Rigid::Pulley(j);
+            let omega =
+                s.rigid_speed(d) + half * sc.rigid_force(m, d) / inertia.rigid(m, d);
+            mm.factor * omega
+        }
+        Some(_) => {
+            let out = sc.motor[j];
+            let accel = if out.active {
+                (out.motor_torque - out.coupling_torque) / mm.rotor_inertia
+            } else {
+                0.0
+            };
+            s.drive_memory[j].motor_speed + half * accel
         }
     }
 }
