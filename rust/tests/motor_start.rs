@@ -2,12 +2,12 @@
 //! the Kloss curve through its rated and breakdown points, the run-up time of a rigid
 //! inertia against its quadrature, the steady running point through a fluid coupling, and
 //! the flywheel.
+use crate::common::{close, free_pulley};
 use beltrs::drives::coupling::{CouplingModel, FluidCoupling};
 use beltrs::drives::motor::{Motor, MotorCurve, MotorModel};
 use beltrs::record::Channels;
 use beltrs::scene::{BrakeSpec, DriveSpec, InitialState, Scene, Wrap};
 use beltrs::{BeltError, Simulation, Stage};
-use crate::common::{close, free_pulley};
 
 const INERTIA: f64 = 40.0;
 
@@ -306,7 +306,10 @@ fn coupling_table_runs_a_held_rotor_up_as_tanh() {
     let (coarse, fine) = (worst(1e-4), worst(5e-5));
     assert!(coarse < 1e-3 * n_inf, "worst error {coarse:e} rad/s");
     let order = coarse / fine;
-    assert!((1.8..2.2).contains(&order), "error ratio {order} (first order: 2)");
+    assert!(
+        (1.8..2.2).contains(&order),
+        "error ratio {order} (first order: 2)"
+    );
 }
 
 /// The coupling table: linear between its points, from (0, 0) to the first, held beyond
@@ -323,7 +326,12 @@ fn coupling_table_interpolates_and_scales_with_the_pump_speed() {
     let eps = 1e-12 * 2000.0;
     // At the rated input speed the slip is (100 − out)/100.
     close("s = 0", m.torque(100.0, 100.0), 0.0, eps);
-    close("s = 0.02 (below the first point)", m.torque(100.0, 98.0), 200.0, eps);
+    close(
+        "s = 0.02 (below the first point)",
+        m.torque(100.0, 98.0),
+        200.0,
+        eps,
+    );
     close("s = 0.05", m.torque(100.0, 95.0), 500.0, eps);
     close("s = 0.15", m.torque(100.0, 85.0), 1000.0, eps);
     close("s = 0.5", m.torque(100.0, 50.0), 1750.0, eps);
@@ -364,9 +372,17 @@ fn coupled_motor_at_a_running_start_starts_at_its_running_point() {
     let c = mm.coupling.clone().unwrap();
     let shaft = mm.factor * w0;
     let n = sim.state.drive_memory[0].motor_speed;
-    assert!(n > shaft && n < m.synchronous_speed, "n = {n}, output {shaft}");
+    assert!(
+        n > shaft && n < m.synchronous_speed,
+        "n = {n}, output {shaft}"
+    );
     let tr = m.rated_torque();
-    close("balance", mm.curve.torque(n) - c.torque(n, shaft), 0.0, 1e-9 * tr);
+    close(
+        "balance",
+        mm.curve.torque(n) - c.torque(n, shaft),
+        0.0,
+        1e-9 * tr,
+    );
     sim.step(2000).unwrap();
     let moved = (sim.state.drive_memory[0].motor_speed - n).abs();
     assert!(moved < 1e-6 * n, "the rotor moved by {moved:e} rad/s");

@@ -1,13 +1,13 @@
 //! The PI speed controller (docs/drives.md, `drives::controller`) against the closed-form
 //! response of a rigid load, its torque limit and anti-windup, its stage and stable-step
 //! bound, its checkpoint, and torque followers (`drives::sharing`).
+use crate::common::{close, free_pulley};
 use beltrs::checkpoint;
 use beltrs::drives::controller::{gains, SpeedController};
 use beltrs::drives::sharing::TorqueFollow;
 use beltrs::record::Channels;
 use beltrs::scene::{DriveSpec, InitialState, Scene, Table};
 use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
-use crate::common::{close, free_pulley};
 
 const INERTIA: f64 = 50.0;
 const RADIUS: f64 = 1.0;
@@ -409,7 +409,10 @@ fn pi_drive_at_a_running_start_holds_its_speed_from_the_start() {
         });
         scene.recording.stabilise = false;
         let mut sim = Simulation::new(&scene).unwrap();
-        assert_eq!(sim.state.pulley_omega[0], w0, "turns counter-clockwise at ω₀");
+        assert_eq!(
+            sim.state.pulley_omega[0], w0,
+            "turns counter-clockwise at ω₀"
+        );
         if !primed {
             sim.state.drive_memory[0] = Default::default();
         }
@@ -424,11 +427,20 @@ fn pi_drive_at_a_running_start_holds_its_speed_from_the_start() {
     };
     for tau in [0.0, 0.01] {
         let (sag, net) = run(tau, 0.0, true);
-        assert!(sag <= 1e-12 * w0, "τ = {tau}: speed left ω₀ by {sag:e} rad/s");
-        assert!(net.abs() <= 1e-9 * b * w0, "τ = {tau}: net drive torque {net:e}");
+        assert!(
+            sag <= 1e-12 * w0,
+            "τ = {tau}: speed left ω₀ by {sag:e} rad/s"
+        );
+        assert!(
+            net.abs() <= 1e-9 * b * w0,
+            "τ = {tau}: net drive torque {net:e}"
+        );
     }
     let (_, net) = run(0.0, 0.05, true);
-    assert!(net.abs() <= 1e-9 * b * w0, "droop: net drive torque {net:e}");
+    assert!(
+        net.abs() <= 1e-9 * b * w0,
+        "droop: net drive torque {net:e}"
+    );
     let (sag, _) = run(0.0, 0.0, false);
     assert!(sag > 0.5, "an empty integral sags by {sag} rad/s only");
 }

@@ -1,14 +1,12 @@
 //! Speed-controlled drives: the starting curves (Guo & Wang 2020 §4) and a drive that makes
 //! its pulley follow one within a torque limit (docs/drives.md).
-use beltrs::checkpoint;
-use beltrs::record::Channels;
-use beltrs::scene::{
-    BrakeSpec, FrictionModel, Scene, Table, Wrap,
-};
-use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
 use crate::common::{
     belt_loop, close, grip, relaxed, start_drive, LOOP_INERTIA, LOOP_RADIUS, PER_PULLEY_ONLY,
 };
+use beltrs::checkpoint;
+use beltrs::record::Channels;
+use beltrs::scene::{BrakeSpec, FrictionModel, Scene, Table, Wrap};
+use beltrs::{BeltError, Simulation, Stage, StartCurve, StartShape};
 use std::f64::consts::PI;
 
 // ---------------------------------------------------------------------------------------

@@ -1,19 +1,18 @@
 //! Stops and takeups (docs/stops-takeups.md): power failure, brakes with a torque or a
 //! deceleration target, holdbacks, winch, screw and locking takeups; their kernels and
 //! their behaviour on a small loop against exact answers.
+use crate::common::{
+    belt_loop, close, grip, relaxed, start_drive, LOOP_EA, LOOP_INERTIA, LOOP_RADIUS, LOOP_RHO,
+    LOOP_SPAN, PER_PULLEY_ONLY,
+};
 use beltrs::drives::brake::brake_prescription;
 use beltrs::drives::holdback::Holdback;
 use beltrs::drives::takeup::{apply_stops, carriage_speed};
 use beltrs::friction::Prescribed;
 use beltrs::scene::{
-    BrakeSpec, DriveSpec, HoldbackSpec, Scene, Table,
-    TakeupKind, TakeupSpec, Wrap,
+    BrakeSpec, DriveSpec, HoldbackSpec, Scene, Table, TakeupKind, TakeupSpec, Wrap,
 };
 use beltrs::{BeltError, Simulation, Stage, StartShape};
-use crate::common::{
-    belt_loop, close, grip, relaxed, start_drive, LOOP_EA, LOOP_INERTIA, LOOP_RADIUS, LOOP_RHO,
-    LOOP_SPAN, PER_PULLEY_ONLY,
-};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 

@@ -143,10 +143,7 @@ impl FluidCoupling {
             return Err(BeltError::invalid(
                 format!("{f}.torque"),
                 format!("{} values", y.len()),
-                format!(
-                    "needs as many values as {f}.slip ({}), at least 2",
-                    x.len()
-                ),
+                format!("needs as many values as {f}.slip ({}), at least 2", x.len()),
             ));
         }
         for (i, (&s, &t)) in x.iter().zip(y).enumerate() {
@@ -278,12 +275,12 @@ impl CouplingModel {
     pub fn max_slope(&self, top: f64) -> f64 {
         let steepest = match &self.table {
             None => self.rated_torque * (1.0 + self.shape) / self.rated_slip,
-            Some(t) => t
-                .x
-                .windows(2)
-                .zip(t.y.windows(2))
-                .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
-                .fold(0.0, f64::max),
+            Some(t) => {
+                t.x.windows(2)
+                    .zip(t.y.windows(2))
+                    .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+                    .fold(0.0, f64::max)
+            }
         };
         top * steepest / (self.rated_speed * self.rated_speed)
     }

@@ -300,7 +300,13 @@ impl Recording {
                 let row = &buf[buf.len() - w..];
                 // Motor speeds are NaN where a pulley has no motor; a motor's own speed
                 // that goes non-finite shows in its drive torque.
-                let bad = |v: &f64| if b == MOTOR_SPEED { v.is_infinite() } else { !v.is_finite() };
+                let bad = |v: &f64| {
+                    if b == MOTOR_SPEED {
+                        v.is_infinite()
+                    } else {
+                        !v.is_finite()
+                    }
+                };
                 row.iter().position(bad).map(|o| (b, o))
             })?;
         let xy = if offset % 2 == 0 { "x" } else { "y" };

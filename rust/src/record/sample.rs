@@ -2,11 +2,11 @@
 //! [`super::Channels::energy`] or [`Simulation::current_energies`]).
 
 use super::Energies;
-use crate::model::Stage;
-use crate::simulation::Simulation;
 use crate::integrate::Inertia;
 use crate::model::Model;
+use crate::model::Stage;
 use crate::pipeline::Scratch;
+use crate::simulation::Simulation;
 use crate::state::{Rigid, State};
 
 impl Simulation {
@@ -140,7 +140,8 @@ impl Simulation {
             r.friction_force.push(sc.friction[j].tangential);
             r.contact_nodes.push(sc.contacts[j].len() as f64);
             r.slipping_nodes.push(sc.friction[j].slipping as f64);
-            r.motor_speed.push(motor_speed(m, s, sc, &self.inertia, j, half));
+            r.motor_speed
+                .push(motor_speed(m, s, sc, &self.inertia, j, half));
         }
         for k in 0..m.idlers.len() {
             let c = &sc.idler_contacts[k];
@@ -166,22 +167,14 @@ impl Simulation {
 /// rotation (NaN without a motor), centred from the half step (`half`, s) as every
 /// recorded speed: σ·i·ω when geared rigidly; behind a fluid coupling the rotor's own
 /// speed moved by half a step of (T_motor − T_coupling)/J_r.
-fn motor_speed(
-    m: &Model,
-    s: &State,
-    sc: &Scratch,
-    inertia: &Inertia,
-    j: usize,
-    half: f64,
-) -> f64 {
+fn motor_speed(m: &Model, s: &State, sc: &Scratch, inertia: &Inertia, j: usize, half: f64) -> f64 {
     let Some(mm) = &m.pulleys[j].motor else {
         return f64::NAN;
     };
     match mm.coupling {
         None => {
             let d = Rigid::Pulley(j);
-            let omega =
-                s.rigid_speed(d) + half * sc.rigid_force(m, d) / inertia.rigid(m, d);
+            let omega = s.rigid_speed(d) + half * sc.rigid_force(m, d) / inertia.rigid(m, d);
             mm.factor * omega
         }
         Some(_) => {

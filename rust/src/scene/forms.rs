@@ -6,8 +6,8 @@
 
 use super::read::rule;
 use super::{
-    BrakeSpec, CreepFriction, Formulation, FrictionModel, IntegratorKind, PulleyContact,
-    Table, TakeupKind, Wrap,
+    BrakeSpec, CreepFriction, Formulation, FrictionModel, IntegratorKind, PulleyContact, Table,
+    TakeupKind, Wrap,
 };
 use crate::start_curve::StartShape;
 use crate::suggest::close_match;

@@ -89,7 +89,10 @@ mod tests {
         }
         let sim = Simulation::new(&scene).unwrap();
         let l0 = sim.model.rest_length[0];
-        assert!((l0 - 1.0).abs() > 0.3, "l⁰ = {l0} m would not tell N/m from N/m²");
+        assert!(
+            (l0 - 1.0).abs() > 0.3,
+            "l⁰ = {l0} m would not tell N/m from N/m²"
+        );
         let element = scene.belt.axial_stiffness / l0;
         let ladder = sim.contact_continuation();
         let start = CONTINUATION_START * element / 1e11;
