@@ -366,13 +366,17 @@ class NonFinite(Exception):
 def _check_finite(what: str, value: Any) -> None:
     if isinstance(value, dict):
         for k, v in value.items():
+            if k == "motor_speed":  # NaN by design where a pulley has no motor: no infinities
+                v = np.nan_to_num(np.asarray(v, dtype=float), nan=0.0, posinf=np.inf, neginf=-np.inf)
             _check_finite(f"{what}[{k}]", v)
         return
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         for f in dataclasses.fields(value):
             v = getattr(value, f.name)
             if isinstance(v, np.ndarray):
-                _check_finite(f"{what}.{f.name}", v)
+                # motor_speed is NaN by design where a pulley has no motor: no infinities.
+                _check_finite(f"{what}.{f.name}", np.nan_to_num(v, nan=0.0, posinf=np.inf, neginf=-np.inf)
+                              if f.name == "motor_speed" else v)
         return
     if isinstance(value, list) and not all(isinstance(v, (int, float)) for v in value):
         return

@@ -41,7 +41,7 @@ def test_run_writes_every_array_the_scene_and_metadata(tmp_path, capsys):
         for field in dataclasses.fields(res):
             value = getattr(res, field.name)
             if isinstance(value, np.ndarray):
-                assert np.array_equal(f[field.name], value), field.name
+                assert np.array_equal(f[field.name], value, equal_nan=True), field.name
         assert "node_velocity" not in f.files  # a channel not asked for
         assert list(f["energy_columns"]) == res.energy_columns
         assert list(f["pulley_names"]) == ["upper", "takeup"]

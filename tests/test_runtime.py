@@ -54,14 +54,14 @@ def test_resume_from_checkpoint_is_bit_for_bit(tmp_path):
     arrays_a, arrays_b = result_arrays(ra), result_arrays(rb)
     assert arrays_a.keys() == arrays_b.keys() and len(arrays_a) >= 17
     for name, value in arrays_a.items():
-        assert np.array_equal(value, arrays_b[name]), name
+        assert np.array_equal(value, arrays_b[name], equal_nan=True), name
     # The run exercised what a checkpoint must carry: turning pulleys and idler, friction.
     assert np.abs(ra.pulley_speed).max() > 1e-3
     assert np.abs(ra.idler_speed).max() > 1e-6
     assert np.abs(ra.friction_torque).max() > 0
     sa, sb = a.state(), b.state()
     for key in sa:
-        assert np.array_equal(sa[key], sb[key]), key
+        assert np.array_equal(sa[key], sb[key], equal_nan=True), key
 
 
 def test_checkpoint_validated_against_given_scene(tmp_path):

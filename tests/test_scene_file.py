@@ -80,7 +80,7 @@ def test_round_trip_compiles_and_runs_bit_for_bit(tmp_path):
     for f in dataclasses.fields(ra):
         x, y = getattr(ra, f.name), getattr(rb, f.name)
         if isinstance(x, np.ndarray):
-            assert np.array_equal(x, y), f.name  # bit for bit: same scene, same arithmetic
+            assert np.array_equal(x, y, equal_nan=True), f.name  # bit for bit: same scene, same arithmetic
     # The run did something: the drive turned the upper pulley (its brake, ramping up,
     # stops it again within the 300 steps).
     assert np.abs(ra.pulley_speed[:, 0]).max() > 0
