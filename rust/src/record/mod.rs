@@ -16,6 +16,11 @@ pub struct Channels {
     pub node_velocity: bool,
     /// Energies `[n_out, 7]` ([`ENERGY_COLUMNS`]). Default false: opt-in.
     pub energy: bool,
+    /// Contact forces of every belt point on every pulley, with the point's angle
+    /// (`contact_normal`, `contact_friction`, `contact_angle`, each `[n_out, n_pulleys,
+    /// n_nodes]`). Default false: opt-in; off, the friction stages keep no per-contact
+    /// forces.
+    pub contact_forces: bool,
 }
 
 impl Default for Channels {
@@ -25,6 +30,7 @@ impl Default for Channels {
             node_position: true,
             node_velocity: true,
             energy: false,
+            contact_forces: false,
         }
     }
 }
@@ -55,8 +61,8 @@ impl Energies {
 }
 
 /// Recorded results. Every buffer is row-major with the shapes documented per field.
-/// Two recordings are equal when they hold the same values bit for bit (so the NaN motor
-/// speeds of pulleys without a motor compare equal).
+/// Two recordings are equal when they hold the same values bit for bit (so NaNs by
+/// design, motor speeds without a motor and contact angles off the pulleys, compare equal).
 #[derive(Debug, Clone, Default)]
 pub struct Recording {
     /// Channels being recorded.
@@ -113,6 +119,18 @@ pub struct Recording {
     /// Energies, J: columns kinetic, strain, bending, gravity, contact, total, drive_work.
     /// `[n_out, 7]`.
     pub energy: Vec<f64>,
+    /// Normal contact force of pulley j on belt point i (node, or rigid body's mass
+    /// centre), N, ≥ 0; 0 where the point does not touch the pulley. Summed over the
+    /// points it is `normal_force`. `[n_out, n_pulleys, n_nodes]`.
+    pub contact_normal: Vec<f64>,
+    /// Friction force of belt point i on pulley j, N, along the pulley's counter-clockwise
+    /// tangent at the point; 0 where the point does not touch it or no friction acts.
+    /// Summed over the points it is `friction_force`. `[n_out, n_pulleys, n_nodes]`.
+    pub contact_friction: Vec<f64>,
+    /// Angle of belt point i about the centre of pulley j, rad, counter-clockwise from +x,
+    /// in (−π, π]; NaN where the point does not touch the pulley.
+    /// `[n_out, n_pulleys, n_nodes]`.
+    pub contact_angle: Vec<f64>,
 }
 
 /// The part of the model a recorded value belongs to.
@@ -130,8 +148,12 @@ pub enum Part {
     Model,
 }
 
-/// Index of [`Recording::motor_speed`] in the buffers' fixed order.
-const MOTOR_SPEED: usize = 15;
+/// Buffers of a recording ([`Recording::buffers_mut`]).
+const BUFFERS: usize = 22;
+/// Index of `contact_angle` among the buffers (NaN by design off the pulleys).
+const CONTACT_ANGLE: usize = 20;
+/// Index of [`Recording::motor_speed`] among the buffers (NaN by design without a motor).
+const MOTOR_SPEED: usize = 21;
 
 /// Column names of [`Recording::energy`].
 pub const ENERGY_COLUMNS: [&str; 7] = [
@@ -189,7 +211,7 @@ impl Recording {
     }
 
     /// Every buffer, in a fixed order (the order of [`Recording::row_widths`]).
-    fn buffers_mut(&mut self) -> [&mut Vec<f64>; 19] {
+    fn buffers_mut(&mut self) -> [&mut Vec<f64>; BUFFERS] {
         [
             &mut self.time,
             &mut self.tension,
@@ -206,17 +228,21 @@ impl Recording {
             &mut self.friction_force,
             &mut self.contact_nodes,
             &mut self.slipping_nodes,
-            &mut self.motor_speed,
             &mut self.idler_force,
             &mut self.idler_speed,
             &mut self.energy,
+            &mut self.contact_normal,
+            &mut self.contact_friction,
+            &mut self.contact_angle,
+            &mut self.motor_speed,
         ]
     }
 
     /// Values each buffer gains per recorded instant, same order as the buffers.
-    fn row_widths(&self) -> [usize; 19] {
+    fn row_widths(&self) -> [usize; BUFFERS] {
         let (n, p, q) = (self.nodes, self.pulleys, self.idlers);
         let c = &self.channels;
+        let contact = if c.contact_forces { p * n } else { 0 };
         [
             1,
             if c.tension { self.elements } else { 0 },
@@ -233,16 +259,19 @@ impl Recording {
             p,
             p,
             p,
-            p,
             q,
             q,
             if c.energy { ENERGY_COLUMNS.len() } else { 0 },
+            contact,
+            contact,
+            contact,
+            p,
         ]
     }
 
-    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 14·p + 2·q) with all
-    /// channels on (n nodes, p pulleys, q idlers); the channels that are off drop out (the
-    /// energies' 7 of the 8).
+    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 14·p + 2·q + 3·p·n)
+    /// with all channels on (n nodes, p pulleys, q idlers); the channels that are off drop
+    /// out (the energies' 7 of the 8, the contact forces' 3·p·n).
     pub fn bytes_per_sample(&self) -> usize {
         8 * self.row_widths().iter().sum::<usize>()
     }
@@ -297,6 +326,9 @@ impl Recording {
             .zip(widths)
             .enumerate()
             .find_map(|(b, (buf, w))| {
+                if b == CONTACT_ANGLE {
+                    return None; // NaN marks the points off the pulley
+                }
                 let row = &buf[buf.len() - w..];
                 // Motor speeds are NaN where a pulley has no motor; a motor's own speed
                 // that goes non-finite shows in its drive torque.
@@ -326,9 +358,17 @@ impl Recording {
             12 => ("friction force".into(), Part::Pulley(offset)),
             13 => ("contact count".into(), Part::Pulley(offset)),
             14 => ("slipping count".into(), Part::Pulley(offset)),
+            15 => ("normal force".into(), Part::Idler(offset)),
+            16 => ("angular speed".into(), Part::Idler(offset)),
             MOTOR_SPEED => ("motor speed".into(), Part::Pulley(offset)),
-            16 => ("normal force".into(), Part::Idler(offset)),
-            17 => ("angular speed".into(), Part::Idler(offset)),
+            18 | 19 => (
+                if buffer == 18 {
+                    "contact normal force".into()
+                } else {
+                    "contact friction force".into()
+                },
+                Part::Node(offset % self.nodes.max(1)),
+            ),
             _ => (
                 format!(
                     "{} energy",

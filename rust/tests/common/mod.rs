@@ -28,6 +28,7 @@ pub const PER_PULLEY_ONLY: Channels = Channels {
     node_position: false,
     node_velocity: false,
     energy: false,
+    contact_forces: false,
 };
 
 /// The scene relaxed to static equilibrium (drives off): the belt at rest on its pulleys,
