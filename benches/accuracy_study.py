@@ -188,7 +188,8 @@ def matched_table(T: dict[str, study.StudyTable], f: str) -> str:
     for i, row in enumerate(rk_d.rows[:-1]):  # the last is the reference itself
         es = rk_s.rows[i].error
         ok = [j for j, r in enumerate(cd_d.rows) if r.error <= row.error and cd_s.rows[j].error <= es]
-        mine = f"| {row.setting:.0e} | {row.error:.3g}; {100 * es:.3g} | {row.wall_time:.3g} | {row.node_steps // row.nodes} |"
+        steps = row.node_steps // row.nodes
+        mine = f"| {row.setting:.0e} | {row.error:.3g}; {100 * es:.3g} | {row.wall_time:.3g} | {steps} |"
         if ok:
             j = min(ok, key=lambda j: cd_d.rows[j].wall_time)
             c = cd_d.rows[j]
