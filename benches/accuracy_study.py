@@ -5,6 +5,8 @@ Run from the repository root with beltrs installed::
     python benches/accuracy_study.py            # full study, about 3-5 minutes
     python benches/accuracy_study.py --quick    # takeup-displacement ladder only (seconds)
     python benches/accuracy_study.py --out DIR  # write the page and plots to DIR
+    python benches/accuracy_study.py --only integrators  # case K, RKF45 against central
+                                                         # differences; replaces that section
 
 Every table comes from :func:`beltrs.study.accuracy_cost`; wall times are from this run on
 this machine (one thread) and include building, stabilising and running each setting.
@@ -113,15 +115,176 @@ def case_g_peak() -> study.Quantity:
     return study.Quantity("peak start-up tension below 2 Hz", "N", measure, run=run)
 
 
+# --- Case K: RKF45 against central differences, both formulations -------------------------
+# Ramp 0.05 s, run 0.15 s, averages over the last 0.05 s (the pulleys follow within I/c = 0.4 ms),
+# sampled every ms; creep friction (Delta_v 1 mm/s, Delta_max 0.1 mm) on both pulleys.
+I_RAMP, I_DURATION, I_WINDOW, I_SAMPLE = 0.05, 0.15, 0.05, 1e-3
+I_FRACTIONS = [0.8, 0.4, 0.2]
+I_TOLERANCES = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]
+I_FORMULATIONS = ("node", "rigid_body")
+I_STAB = {"tolerance": 1e-4, "max_steps": 300_000}
+I_NOTES: dict[str, str] = {}  # formulation -> why its RKF45 ladder did not run
+
+
+def case_k_creep(formulation: str, time_step_fraction: float = 0.5) -> beltrs.Scene:
+    """Case K with creep friction: the node model (``kubas_drive``, 150 elements, linear
+    contact, uncalibrated preload) or Kubas's rigid bodies (``kubas_case_k``, 150 bodies)."""
+    creep = beltrs.Friction(model="creep", static=1.05, kinetic=1.0)
+    if formulation == "node":
+        scene = kubas_drive(150, time_step_fraction=time_step_fraction, calibrate=False)
+        ramp = beltrs.Drive(time=[0.0, I_RAMP], torque=[0.0, KUBAS_TORQUE])
+        scene = replace(scene, pulleys=[replace(scene.pulleys[0], drive=ramp), scene.pulleys[1]])
+    else:
+        scene = beltrs.scenes.kubas_case_k(ramp_time=I_RAMP)
+        scene = replace(scene, solver=replace(scene.solver, time_step_fraction=time_step_fraction))
+    return replace(scene, pulleys=[replace(p, friction=creep) for p in scene.pulleys])
+
+
+def integrator_quantities() -> list[study.Quantity]:
+    diff = study.tension_difference("drive", "driven", I_DURATION, window=I_WINDOW, record_interval=I_SAMPLE)
+    sl = study.slip("drive", "driven", I_DURATION, window=I_WINDOW, record_interval=I_SAMPLE)
+    return [diff, sl]
+
+
+def integrator_ladders(T: dict[str, study.StudyTable], tolerances: list[float], fractions: list[float]) -> None:
+    """Fill T['int_<formulation>_<cd|rk>_<diff|slip>'] (RKF45 skipped, with the reason in
+    I_NOTES, where the engine refuses it)."""
+    for f in I_FORMULATIONS:
+        t0 = time.perf_counter()
+        make = lambda f=f, **kw: case_k_creep(f, **kw)  # noqa: E731
+        T[f"int_{f}_cd_diff"], T[f"int_{f}_cd_slip"] = study.accuracy_costs(
+            make, integrator_quantities(), "time_step_fraction", fractions, stabilise_options=I_STAB
+        )
+        print(f"int_{f}_cd: {time.perf_counter() - t0:.1f} s", flush=True)
+        t0 = time.perf_counter()
+        try:
+            T[f"int_{f}_rk_diff"], T[f"int_{f}_rk_slip"] = study.accuracy_costs(
+                make, integrator_quantities(), "rkf_tolerance", tolerances, stabilise_options=I_STAB
+            )
+        except beltrs.SceneError as err:
+            I_NOTES[f] = str(err)
+        print(f"int_{f}_rk: {time.perf_counter() - t0:.1f} s", flush=True)
+
+
+def common_reference(T: dict[str, study.StudyTable], f: str, what: str) -> tuple[float, str]:
+    """The tightest RKF45 run if there is one, else the smallest central-difference step."""
+    if f"int_{f}_rk_{what}" in T:
+        t = T[f"int_{f}_rk_{what}"]
+        return float(t.value[-1]), f"RKF45 at {t.setting[-1]:.0e}"
+    t = T[f"int_{f}_cd_{what}"]
+    return float(t.value[-1]), f"central differences at {t.setting[-1]:g}"
+
+
+def matched_table(T: dict[str, study.StudyTable], f: str) -> str:
+    """For each RKF45 rung, the cheapest central-difference rung as accurate in both T1 - T2
+    and slip (against the common reference), and the wall-time ratio."""
+    if f"int_{f}_rk_diff" not in T:
+        return ""
+    (rd, kind), (rs, _) = common_reference(T, f, "diff"), common_reference(T, f, "slip")
+    cd_d, cd_s = T[f"int_{f}_cd_diff"].against(rd, kind), T[f"int_{f}_cd_slip"].against(rs, kind)
+    rk_d, rk_s = T[f"int_{f}_rk_diff"].against(rd, kind), T[f"int_{f}_rk_slip"].against(rs, kind)
+    lines = ["| RKF45 tolerance | errors T1 − T2 (N); slip (%) | wall (s) | accepted steps | cheapest CD fraction "
+             "as accurate | its errors | wall (s) | RKF45 / CD wall |", "|---:|---|---:|---:|---:|---|---:|---:|"]
+    for i, row in enumerate(rk_d.rows[:-1]):  # the last is the reference itself
+        es = rk_s.rows[i].error
+        ok = [j for j, r in enumerate(cd_d.rows) if r.error <= row.error and cd_s.rows[j].error <= es]
+        steps = row.node_steps // row.nodes
+        mine = f"| {row.setting:.0e} | {row.error:.3g}; {100 * es:.3g} | {row.wall_time:.3g} | {steps} |"
+        if ok:
+            j = min(ok, key=lambda j: cd_d.rows[j].wall_time)
+            c = cd_d.rows[j]
+            lines.append(f"{mine} {c.setting:g} | {c.error:.3g}; {100 * cd_s.rows[j].error:.3g} | "
+                         f"{c.wall_time:.3g} | {row.wall_time / c.wall_time:.2g} |")
+        else:
+            lines.append(f"{mine} none in the ladder | | | |")
+    return "\n".join(lines)
+
+
+def integrator_section(T: dict[str, study.StudyTable]) -> list[str]:
+    """The page section (between markers, so ``--only integrators`` can replace it alone)."""
+    L = ["<!-- integrators -->", "## Case K: RKF45 against central differences", ""]
+    add = L.append
+    add(f"Case K with creep friction (Δv = 1 mm/s, Δmax = 0.1 mm, µs = 1.05, µk = 1.0) for both belt "
+        f"formulations at 150 elements/bodies: the node model (`kubas_drive`, linear contact 1e7 N/m, preload "
+        f"uncalibrated) and Kubas's rigid bodies (`beltrs.scenes.kubas_case_k`, nonlinear contact). Drive "
+        f"torque ramped to 15 N·m over {I_RAMP:g} s, run {I_DURATION:g} s, averages over the last "
+        f"{I_WINDOW:g} s, sampled every {I_SAMPLE * 1e3:g} ms. Central differences (CD) at fractions "
+        f"{', '.join(f'{v:g}' for v in I_FRACTIONS)} of the stable step (creep friction with its stick limit); "
+        f"RKF45 at relative tolerances {', '.join(f'{v:.0e}' for v in I_TOLERANCES)} (absolute tolerance "
+        "1e-11, the creep law resolved). The mesh is the same in every row, so the errors here are the time "
+        "integration's alone: they are measured against one common reference per formulation (the tightest "
+        "RKF45 run; the smallest CD step where RKF45 did not run), not against M/r (the mesh's error of "
+        "T₁ − T₂ is in the case K table above). *node-steps* count accepted steps; an RKF45 step costs six "
+        "force evaluations, a CD step one. Wall includes the static relaxation.")
+    add("")
+    for f in I_FORMULATIONS:
+        add(f"### {f}")
+        add("")
+        for what, scale, unit in (("diff", 1.0, "N"), ("slip", 100.0, "%")):
+            ref, kind = common_reference(T, f, what)
+            for key in (f"int_{f}_cd_{what}", f"int_{f}_rk_{what}"):
+                if key in T:
+                    add(T[key].against(ref, kind).to_markdown(scale, unit))
+                    add("")
+        if f in I_NOTES:
+            add(f"RKF45 not run: the engine refuses it for this scene: {I_NOTES[f]}")
+            add("")
+        m = matched_table(T, f)
+        if m:
+            add("At matched error (the cheapest CD setting whose errors in T₁ − T₂ *and* slip are both at most "
+                "the RKF45 row's):")
+            add("")
+            add(m)
+            add("")
+    add("![integrators](img/accuracy_kubas_integrators.png)")
+    add("")
+    add("<!-- /integrators -->")
+    return L
+
+
+def plot_integrators(T: dict[str, study.StudyTable], img: pathlib.Path) -> None:
+    lines = []
+    for f in I_FORMULATIONS:
+        ref, kind = common_reference(T, f, "diff")
+        for tag, name in (("cd", "CD, fraction"), ("rk", "RKF45, tolerance")):
+            if f"int_{f}_{tag}_diff" in T:
+                lines.append((f"{f}: {name}", T[f"int_{f}_{tag}_diff"].against(ref, kind)))
+    plot(lines, img / "accuracy_kubas_integrators.png", "Case K, creep friction: T1 - T2 error vs wall time",
+         unit="N")
+
+
+def splice(path: pathlib.Path, section: list[str]) -> None:
+    """Replace the integrators section of an existing page (or append it before the
+    conclusions)."""
+    text = path.read_text(encoding="utf-8")
+    block = "\n".join(section)
+    if "<!-- integrators -->" in text:
+        a = text.index("<!-- integrators -->")
+        b = text.index("<!-- /integrators -->") + len("<!-- /integrators -->")
+        text = text[:a] + block + text[b:]
+    else:
+        a = text.index("## Conclusions")
+        text = text[:a] + block + "\n\n" + text[a:]
+    path.write_text(text, encoding="utf-8")
+
+
 def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="takeup-displacement ladder only (smoke test)")
     ap.add_argument("--out", default=str(ROOT / "docs"), help="directory for accuracy.md and img/ (default docs/)")
+    ap.add_argument("--only", choices=["integrators"],
+                    help="run only this section and replace it in an existing accuracy.md")
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
     img = out / "img"
     started = time.perf_counter()
     T: dict[str, study.StudyTable] = {}
+    if args.only == "integrators":
+        integrator_ladders(T, I_TOLERANCES, I_FRACTIONS)
+        plot_integrators(T, img)
+        splice(out / "accuracy.md", integrator_section(T))
+        print(f"replaced the integrators section of {out / 'accuracy.md'} in {time.perf_counter() - started:.0f} s")
+        return T
 
     def run(key: str, *a: Any, **kw: Any) -> study.StudyTable:
         t0 = time.perf_counter()
@@ -159,6 +322,7 @@ def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
         peak = case_g_peak()
         run("g_elements", case_g_scene, peak, "element_length", [0.2, 0.1, 0.05], stabilise_options=G_STAB)
         run("g_dt", case_g_scene, peak, "time_step_fraction", [0.8, 0.4, 0.2], stabilise_options=G_STAB)
+        integrator_ladders(T, I_TOLERANCES, I_FRACTIONS)
 
     # --- plots -------------------------------------------------------------------------
     plot([("elements", T["takeup_elements"])] + ([("contact stiffness, 200 el.", T["takeup_contact"])]
@@ -176,6 +340,7 @@ def main(argv: list[str] | None = None) -> dict[str, study.StudyTable]:
              "Case K (node model): T1 - T2 error vs wall time", unit="N")
         plot([("element length", T["g_elements"]), ("dt fraction, 0.2 m", T["g_dt"])], img / "accuracy_case_g.png",
              f"Case G ({G_LENGTH:g} m): peak start-up tension error vs wall time", scale=1e-3, unit="kN")
+        plot_integrators(T, img)
 
     write_page(out / "accuracy.md", T, args.quick, time.perf_counter() - started)
     print(f"wrote {out / 'accuracy.md'} in {time.perf_counter() - started:.0f} s")
@@ -205,9 +370,10 @@ def write_page(path: pathlib.Path, T: dict[str, study.StudyTable], quick: bool, 
     add("")
     add("Models covered: Hustrulid's node model (Kelvin-Voigt elements, bending springs, nodal penalty "
         "contact, stick-force friction, central differences), with speed-controlled drives, material load "
-        "and DIN 22101 running resistance for case G. **Not yet covered** (the models do not exist "
-        "yet): the Kubas rigid-body belt with creep-rate friction and its RKF 4(5) integrator (so no "
-        "*RKF tolerance* ladder: `accuracy_cost(..., refine='rkf_tolerance')` raises `SceneError`).")
+        "and DIN 22101 running resistance for case G; and, on case K with creep friction, both belt "
+        "formulations (the node model and Kubas's rigid bodies with his nonlinear contact) under central "
+        "differences and under adaptive RKF45 (`accuracy_cost(..., refine='rkf_tolerance')`, tolerance "
+        "ladders), in the last section.")
     add("")
     t = T["takeup_elements"]
     add("## Case H: takeup displacement (static)")
@@ -317,6 +483,8 @@ def write_page(path: pathlib.Path, T: dict[str, study.StudyTable], quick: bool, 
         add(f"Raw peaks (with the chordal ripple): {raw}.")
         add("")
         add("![case G](img/accuracy_case_g.png)")
+        add("")
+        L.extend(integrator_section(T))
         add("")
         add(conclusions(T))
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -22,10 +22,17 @@ Settings that can be refined (``refine=``), with the step size ``h`` used for th
 ``"element_length"``     elements = round(belt length / value), m     value (m)
 ``"time_step_fraction"`` fraction of the stability limit              value
 ``"contact_stiffness"``  every pulley and idler, N/m                  1 / value (m/N)
-``"rkf_tolerance"``      refused: the node model integrates with explicit central
-                         differences; there is no RKF integrator yet (it comes with
-                         the Kubas rigid-body belt)
+``"rkf_tolerance"``      ``solver.integrator = "rkf45"`` with this    value
+                         ``relative_tolerance`` (absolute tolerance
+                         as the scene's)
 =======================  ===========================================  ===================
+
+Under ``"rkf_tolerance"`` a factory is called without arguments and its scene's solver is
+replaced; the scene must suit RKF45 (creep-rate friction, not stick-force: the engine
+refuses the rest with a ``SceneError`` naming the key). The order is then the exponent of
+the error in the tolerance (about 0.8 for a 4(5) pair with error-per-step control), the
+``dt`` column the mean accepted step over the dynamic run, and node-steps count accepted
+steps (each costs six force evaluations, central differences one).
 
 A factory is called with the setting as a keyword (``elements=``, ``time_step_fraction=``,
 ``contact_stiffness=``; ``element_length`` is turned into ``elements=``), so
@@ -63,6 +70,7 @@ __all__ = [
     "StudyTable",
     "SETTINGS",
     "accuracy_cost",
+    "accuracy_costs",
     "counterweight_step_frequency",
     "hustrulid_tension",
     "hustrulid_wave_speed_quantity",
@@ -83,7 +91,7 @@ SETTINGS: dict[str, Optional[tuple[float, ...]]] = {
     "element_length": None,  # default: base, 1/2, 1/4 of the scene's element length
     "time_step_fraction": (0.8, 0.4, 0.2, 0.1),
     "contact_stiffness": (1e7, 1e8, 1e9, 1e10),
-    "rkf_tolerance": None,
+    "rkf_tolerance": (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9),
 }
 
 SceneSource = Union[Scene, Callable[..., Scene]]
@@ -264,9 +272,11 @@ def slip(
     setup: Optional[Callable[[Simulation], Any]] = None,
     window: float = 0.1,
     stabilise: bool = True,
+    record_interval: Optional[float] = None,
 ) -> Quantity:
     """Speed loss of a belt drive, 1 − ω₂r₂/(ω₁r₁) (drive 1, driven 2), averaged over the
-    last ``window`` s of a ``duration`` s run (dimensionless)."""
+    last ``window`` s of a ``duration`` s run (dimensionless). Sampled every
+    ``record_interval`` s (default None: every 10 steps)."""
 
     def measure(sim: Simulation) -> float:
         res = _result(sim)
@@ -277,8 +287,12 @@ def slip(
         w2 = float(np.mean(res.pulley_speed[keep, j]))
         return 1.0 - (w2 * r2) / (w1 * r1)
 
-    run = _scenario(setup, duration, record_every=10, tension=False, node_position=False, node_velocity=False)
+    run = _scenario(setup, duration, **_every(record_interval), tension=False, node_position=False, node_velocity=False)
     return Quantity("slip", "-", measure, run=run, stabilise=stabilise)
+
+
+def _every(record_interval: Optional[float]) -> dict[str, Any]:
+    return {"record_every": 10} if record_interval is None else {"record_interval": record_interval}
 
 
 def tension_difference(
@@ -289,11 +303,13 @@ def tension_difference(
     window: float = 0.1,
     exact: Optional[float] = None,
     stabilise: bool = True,
+    record_interval: Optional[float] = None,
 ) -> Quantity:
     """T₁ − T₂ (N) of a two-pulley belt drive: the median tension of the elements in the
     middle 60 % of each free span (between the pulley centres, one span on each side of the
     line joining them), over the last ``window`` s of a ``duration`` s run; tight minus
-    slack. In steady running it must equal M/r of the drive pulley (force balance)."""
+    slack. In steady running it must equal M/r of the drive pulley (force balance).
+    Sampled every ``record_interval`` s (default None: every 10 steps)."""
 
     def measure(sim: Simulation) -> float:
         res = _result(sim)
@@ -311,7 +327,7 @@ def tension_difference(
         b = float(np.median(t[span & (side < 0)]))
         return abs(a - b)
 
-    run = _scenario(setup, duration, record_every=10, node_velocity=False)
+    run = _scenario(setup, duration, **_every(record_interval), node_velocity=False)
     return Quantity("T1 - T2", "N", measure, run=run, exact=exact, stabilise=stabilise)
 
 
@@ -324,7 +340,7 @@ class StudyRow:
         setting: the refined setting's value (unit of the setting).
         h: step size used for the orders (see the module docstring).
         nodes: belt nodes.
-        time_step: s.
+        time_step: s (under RKF45 the mean accepted step).
         value: the quantity (its unit).
         error: |value − reference| (the quantity's unit).
         order: observed order of convergence reaching this row (NaN for the first rows).
@@ -434,6 +450,17 @@ class StudyTable:
         lines.append(ref + ")")
         return "\n".join(lines)
 
+    def against(self, reference: float, kind: str) -> "StudyTable":
+        """The same runs with errors and orders against another ``reference`` (the
+        quantity's unit), labelled ``kind`` (e.g. ``"RKF45 at 1e-9"``): to compare ladders
+        of different settings against one common reference."""
+        rows = [replace(r, error=abs(r.value - reference), order=math.nan) for r in self.rows]
+        for i in range(1, len(rows)):
+            e0, e1, h0, h1 = rows[i - 1].error, rows[i].error, rows[i - 1].h, rows[i].h
+            if e0 > 0 and e1 > 0 and h0 != h1:
+                rows[i].order = math.log(e0 / e1) / math.log(h0 / h1)
+        return StudyTable(self.refine, self.quantity, self.unit, float(reference), kind, math.nan, rows)
+
     def pareto(self) -> list[int]:
         """Indices of the rows on the error-versus-wall-time Pareto front."""
         return pareto_front(self.wall_time, self.error)
@@ -487,13 +514,6 @@ def _reference(h: np.ndarray, q: np.ndarray) -> tuple[float, str, float]:
 
 # --- the study ------------------------------------------------------------------------------
 def _check_setting(refine: str, scene: SceneSource) -> None:
-    if refine == "rkf_tolerance":
-        formulation = scene.belt.formulation if isinstance(scene, Scene) else "node_kelvin_voigt"
-        raise _beltrs.SceneError(
-            f"refine = 'rkf_tolerance': the {formulation} belt model integrates with explicit central "
-            "differences at a fraction of its stability limit; there is no RKF integrator (and so no tolerance) "
-            "yet. Refine 'time_step_fraction' instead."
-        )
     if refine not in SETTINGS:
         raise _beltrs.SceneError(f"refine = {refine!r}: must be one of {sorted(SETTINGS)}")
 
@@ -526,6 +546,10 @@ def _scene_at(scene: SceneSource, refine: str, value: float) -> Scene:
             raise _beltrs.SceneError(f"element_length = {value}: must be > 0 (m)")
         n = max(3, int(round(_belt_length(_base_scene(scene)) / value)))
         refine, value = "elements", n
+    if refine == "rkf_tolerance":
+        base = _base_scene(scene)
+        solver = replace(base.solver, integrator="rkf45", time_step=None, relative_tolerance=float(value))
+        return replace(base, solver=solver)
     if not isinstance(scene, Scene):
         kw = {refine: int(value) if refine == "elements" else float(value)}
         return scene(**kw)
@@ -550,6 +574,14 @@ def _h(refine: str, value: float) -> float:
     return float(value)
 
 
+def _mean_step(sim: Simulation) -> float:
+    """The central-difference step, or under RKF45 the mean accepted step of the run(s), s."""
+    accepted = int(sim._core.accepted_steps)
+    if sim.scene.solver.integrator == "rkf45" and accepted > 0:
+        return float(sim.time) / accepted
+    return float(sim.dt)
+
+
 def _as_quantity(quantity: Union[Quantity, Callable[[Simulation], float]]) -> Quantity:
     if isinstance(quantity, Quantity):
         return quantity
@@ -562,7 +594,14 @@ def run_setting(
     """Build, stabilise (if asked), run the scenario and measure once.
 
     Returns (value, simulation, wall time s, node-steps)."""
-    q = _as_quantity(quantity)
+    values, sim, wall, node_steps = _run_setting(scene, [_as_quantity(quantity)], stabilise_options)
+    return values[0], sim, wall, node_steps
+
+
+def _run_setting(
+    scene: Scene, quantities: Sequence[Quantity], stabilise_options: Optional[dict]
+) -> tuple[list[float], Simulation, float, int]:
+    q = quantities[0]
     t0 = _time.perf_counter()
     sim = Simulation(scene)
     relax = 0
@@ -571,10 +610,10 @@ def run_setting(
     step0 = int(sim.state()["step"])
     if q.run is not None:
         q.run(sim)
-    value = q(sim)
+    values = [qq(sim) for qq in quantities]
     wall = _time.perf_counter() - t0
     steps = relax + int(sim.state()["step"]) - step0
-    return value, sim, wall, sim.nodes * steps
+    return values, sim, wall, sim.nodes * steps
 
 
 def accuracy_cost(
@@ -596,11 +635,11 @@ def accuracy_cost(
             :func:`takeup_displacement`) or a callable ``f(sim) -> float`` measured after
             ``sim.stabilise()``.
         refine: ``"elements"``, ``"element_length"`` (m), ``"time_step_fraction"``,
-            ``"contact_stiffness"`` (N/m) or ``"rkf_tolerance"`` (refused for the node
-            model: no RKF integrator yet). Default ``"elements"``.
+            ``"contact_stiffness"`` (N/m) or ``"rkf_tolerance"`` (RKF45's relative
+            tolerance; the scene must suit RKF45). Default ``"elements"``.
         values: the ladder, any order (sorted coarse to fine). Default: 1x, 2x, 4x the
             scene's element count / 1, 1/2, 1/4 of its element length / fractions 0.8,
-            0.4, 0.2, 0.1 / stiffness 1e7 to 1e10 N/m.
+            0.4, 0.2, 0.1 / stiffness 1e7 to 1e10 N/m / tolerances 1e-4 to 1e-9.
         exact: exact answer (the quantity's unit); overrides the quantity's. Default None:
             the quantity's, else a Richardson reference (needs at least three settings).
         stabilise_options: keyword arguments for :meth:`Simulation.stabilise`.
@@ -613,6 +652,32 @@ def accuracy_cost(
     Raises:
         beltrs.SceneError: unknown or refused setting, bad ladder.
     """
+    q = _as_quantity(quantity)
+    if exact is not None:
+        q = replace(q, exact=exact)
+    return accuracy_costs(scene, [q], refine, values, stabilise_options=stabilise_options, repeats=repeats)[0]
+
+
+def accuracy_costs(
+    scene: SceneSource,
+    quantities: Sequence[Union[Quantity, Callable[[Simulation], float]]],
+    refine: str = "elements",
+    values: Optional[Sequence[float]] = None,
+    *,
+    stabilise_options: Optional[dict] = None,
+    repeats: int = 1,
+) -> list[StudyTable]:
+    """:func:`accuracy_cost` for several quantities measured on the same runs: the first
+    quantity's scenario is run (and its ``stabilise`` obeyed), then every quantity is
+    measured (the others' ``run`` is not called). One table per quantity, in order, with
+    the same wall times and node-steps; each against its own ``exact`` or a Richardson
+    reference.
+
+    Raises:
+        beltrs.SceneError: as :func:`accuracy_cost`; an empty list of quantities.
+    """
+    if len(quantities) == 0:
+        raise _beltrs.SceneError("quantities = []: give at least one quantity")
     _check_setting(refine, scene)
     if repeats < 1:
         raise _beltrs.SceneError(f"repeats = {repeats}: must be >= 1")
@@ -622,12 +687,13 @@ def accuracy_cost(
     for v in ladder:
         if not (isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) and v > 0):
             raise _beltrs.SceneError(f"values: {v!r} must be a finite number > 0")
+    if refine == "rkf_tolerance" and max(ladder) >= 1:
+        raise _beltrs.SceneError(f"values: rkf_tolerance {max(ladder)} must be < 1 (a relative tolerance)")
     if refine == "time_step_fraction" and max(ladder) > 1:
         raise _beltrs.SceneError(f"values: time_step_fraction {max(ladder)} must be <= 1")
     ladder.sort(key=lambda v: -_h(refine, v))
-    q = _as_quantity(quantity)
-    ref_exact = exact if exact is not None else q.exact
-    if ref_exact is None and len(ladder) < 3:
+    qs = [_as_quantity(q) for q in quantities]
+    if any(q.exact is None for q in qs) and len(ladder) < 3:
         raise _beltrs.SceneError(f"values = {ladder}: a Richardson reference needs at least three settings")
 
     raw = []
@@ -636,7 +702,7 @@ def accuracy_cost(
         best = None
         for _ in range(repeats):
             try:
-                value, sim, wall, node_steps = run_setting(s, q, stabilise_options)
+                value, sim, wall, node_steps = _run_setting(s, qs, stabilise_options)
             except _beltrs.BeltrsError as err:
                 raise type(err)(f"{refine} = {v}: {err}") from err
             if best is None or wall < best[2]:
@@ -645,9 +711,13 @@ def accuracy_cost(
         raw.append((v, *best))
 
     h = np.array([_h(refine, r[0]) for r in raw])
+    return [_table(refine, q, h, [(r[0], r[1][k], *r[2:]) for r in raw]) for k, q in enumerate(qs)]
+
+
+def _table(refine: str, q: Quantity, h: np.ndarray, raw: list) -> StudyTable:
     qv = np.array([r[1] for r in raw])
-    if ref_exact is not None:
-        reference, kind, p_ref = float(ref_exact), "exact", math.nan
+    if q.exact is not None:
+        reference, kind, p_ref = float(q.exact), "exact", math.nan
     else:
         reference, kind, p_ref = _reference(h, qv)
     err = np.abs(qv - reference)
@@ -663,7 +733,7 @@ def accuracy_cost(
             setting=float(v),
             h=float(h[i]),
             nodes=sim.nodes,
-            time_step=sim.dt,
+            time_step=_mean_step(sim),
             value=float(value),
             error=float(err[i]),
             order=float(orders[i]),
