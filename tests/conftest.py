@@ -32,3 +32,17 @@ def stabilised(elements: int = 89, tolerance: float = 1e-7, **kw):
 @pytest.fixture
 def case_h():
     return stabilised(89)
+
+
+@pytest.fixture(scope="session")
+def case_k_run():
+    """Case K as built in, at default settings: relaxed, then 0.5 s (the torque ramps over
+    0.3 s), recorded every 1 ms with the contact forces; (simulation, static preload N,
+    Result). Shared by tests/test_rigid_body.py and tests/test_kubas_figures.py."""
+    import numpy as np
+
+    sim = beltrs.Simulation(beltrs.scenes.kubas_case_k())
+    assert sim.stabilise()["converged"]
+    preload = float(np.mean(sim.tensions()))
+    res = sim.run(0.5, record_interval=1e-3, node_velocity=False, contact_forces=True)
+    return sim, preload, res

@@ -156,13 +156,10 @@ def span_tensions(res: beltrs.Result, distance: float = 0.515) -> tuple[np.ndarr
 
 
 @pytest.fixture(scope="module")
-def case_k():
-    """Case K as built in, at default settings: relaxed, then 0.5 s (the torque ramps over 0.3 s)."""
-    sim = Simulation(beltrs.scenes.kubas_case_k())
-    assert sim.stabilise()["converged"]
-    preload = float(np.mean(sim.tensions()))
-    res = sim.run(0.5, record_interval=1e-3, node_velocity=False)
-    return sim, preload, res
+def case_k(case_k_run):
+    """Case K as built in, at default settings: relaxed, then 0.5 s (the torque ramps over
+    0.3 s); run once per session (conftest.py)."""
+    return case_k_run
 
 
 def test_case_k_tension_difference_is_the_drive_torque_over_the_radius(case_k):

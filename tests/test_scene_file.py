@@ -346,9 +346,11 @@ def test_friction_model_none_refuses_coefficients():
 
 def test_recording_run_kwargs():
     # No interval: Simulation.run's default (from the scene's wave physics, at most 0.01 s).
-    assert Recording().run_kwargs() == dict(tension=True, node_position=True, node_velocity=True)
-    assert Recording(every=5, channels=("tension",)).run_kwargs() == dict(
-        tension=True, node_position=False, node_velocity=False, record_every=5
+    assert Recording().run_kwargs() == dict(
+        tension=True, node_position=True, node_velocity=True, contact_forces=False
+    )
+    assert Recording(every=5, channels=("tension", "contact_forces")).run_kwargs() == dict(
+        tension=True, node_position=False, node_velocity=False, contact_forces=True, record_every=5
     )
     assert Recording(interval=0.5).run_kwargs()["record_interval"] == 0.5
 

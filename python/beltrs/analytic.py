@@ -73,6 +73,7 @@ __all__ = [
     "two_pulley_takeup_statics",
     "takeup_step_response",
     "two_pulley_creep",
+    "pulley_torsion_frequency",
 ]
 
 
@@ -912,3 +913,81 @@ def hanging_rope(
         frequency=beta * c / (2.0 * math.pi * big_l),
         frequency_rayleigh=math.sqrt(ea / (big_l * (m + rho * big_l / 3.0))) / (2.0 * math.pi),
     )
+
+
+def pulley_torsion_frequency(
+    *,
+    inertia: float,
+    radius: float,
+    axial_stiffness: float,
+    spans: "list[float] | tuple[float, ...]",
+    mass_per_length: float = 0.0,
+    wrap: float = 0.0,
+) -> float:
+    """Lowest torsional frequency of a pulley held by the belt spans leaving it, each span
+    fixed at its far end (the other pulley's speed prescribed), Hz.
+
+    The pulley (polar inertia J) turns by theta; each span's end on its rim moves by r*theta
+    along the span, stretching one span and relaxing the other, and both pull it back. Each
+    span is an elastic rod of length L_s, axial stiffness EA and mass rho per length, fixed
+    at the far end: for a harmonic motion at omega its end force per unit end displacement
+    is EA*beta*cot(beta*L_s), beta = omega/sqrt(EA/rho) (exact for the continuous rod). The
+    belt on the pulley's ``wrap`` turns with it (inertia rho*r^3*wrap). The frequency is
+    the lowest root of
+
+        (J + rho r^3 wrap) omega^2 = r^2 EA beta sum_s cot(beta L_s).
+
+    Without belt mass (``mass_per_length = 0``) that is omega^2 = k_theta/J with
+    k_theta = r^2 sum_s EA/L_s, the pulley on the spans' stiffness; to first order in the
+    belt mass each span adds rho L_s r^2/3 to the inertia (Rayleigh). Neglected: the
+    compliance of the slip arcs (the belt creeps over part of each wrap, lengthening the
+    spans' effective lengths), the belt's transport speed (wave speeds c +- v,
+    (v/c)^2 ~ 1e-4 in belt drives) and its transverse motion.
+
+    Args:
+        inertia: J, kg*m^2, > 0.
+        radius: r, m, > 0.
+        axial_stiffness: EA, N, > 0.
+        spans: span lengths L_s, m, each > 0 (two for a two-pulley drive).
+        mass_per_length: rho, kg/m, >= 0. Default 0.
+        wrap: belt wrap on the pulley that turns with it, rad, >= 0. Default 0.
+
+    Returns:
+        f = omega/(2 pi), Hz.
+
+    Raises:
+        beltrs.SceneError: a bad argument (named, with its value and the rule).
+    """
+    _check_positive("inertia", inertia)
+    _check_positive("radius", radius)
+    _check_positive("axial_stiffness", axial_stiffness)
+    _check_non_negative("mass_per_length", mass_per_length)
+    _check_non_negative("wrap", wrap)
+    if isinstance(spans, (str, bytes)) or not hasattr(spans, "__len__") or len(spans) == 0:
+        raise SceneError(f"spans = {spans!r}: must be a non-empty list of span lengths (m)")
+    lengths = []
+    for k, length in enumerate(spans):
+        _check_positive(f"spans[{k}]", length)
+        lengths.append(float(length))
+    j, r, ea, rho = float(inertia), float(radius), float(axial_stiffness), float(mass_per_length)
+    stiffness = r * r * ea * sum(1.0 / s for s in lengths)
+    if rho == 0.0:
+        return math.sqrt(stiffness / j) / (2 * math.pi)
+    inertia_on = j + rho * r**3 * float(wrap)
+    c = math.sqrt(ea / rho)
+
+    def residual(omega: float) -> float:
+        beta = omega / c
+        return r * r * ea * beta * sum(1.0 / math.tan(beta * s) for s in lengths) - inertia_on * omega**2
+
+    # The residual falls from k_theta > 0 at omega -> 0 and reaches -inf at the first pole
+    # beta L_max = pi of the cotangents: the lowest root lies below it.
+    hi = math.pi * c / max(lengths) * (1 - 1e-12)
+    lo = 1e-9 * hi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if residual(mid) > 0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi) / (2 * math.pi)

@@ -21,7 +21,7 @@ import numpy as np
 
 from . import _beltrs
 
-__all__ = ["FORMAT", "UNITS", "DIMS", "Capstan", "Result", "load_result"]
+__all__ = ["FORMAT", "UNITS", "DIMS", "Capstan", "ContactProfile", "Result", "load_result"]
 
 #: Format tag written into every saved result (NPZ key / netCDF attribute ``beltrs_format``).
 FORMAT = "beltrs-result/1"
@@ -46,6 +46,9 @@ UNITS: dict[str, str] = {
     "idler_force": "N",
     "idler_speed": "rad/s",
     "energy": "J",
+    "contact_normal": "N",
+    "contact_friction": "N",
+    "contact_angle": "rad",
     "drive_power": "W",
 }
 
@@ -69,6 +72,9 @@ DIMS: dict[str, tuple[str, ...]] = {
     "idler_force": ("time", "idler"),
     "idler_speed": ("time", "idler"),
     "energy": ("time", "energy_term"),
+    "contact_normal": ("time", "pulley", "node"),
+    "contact_friction": ("time", "pulley", "node"),
+    "contact_angle": ("time", "pulley", "node"),
 }
 
 _DESCRIPTION: dict[str, str] = {
@@ -90,6 +96,13 @@ _DESCRIPTION: dict[str, str] = {
     "idler_force": "idler normal force",
     "idler_speed": "idler angular speed",
     "energy": "energies (terms: coordinate energy_term)",
+    "contact_normal": "normal contact force of the pulley on the belt point (0 off the pulley)",
+    "contact_friction": (
+        "friction force of the belt point on the pulley along its counter-clockwise tangent (0 off the pulley)"
+    ),
+    "contact_angle": (
+        "angle of the belt point about the pulley centre, counter-clockwise from +x (NaN off the pulley)"
+    ),
     "drive_power": "drive power = drive_torque * pulley_speed",
 }
 
@@ -167,6 +180,18 @@ class Result:
         energy: ``[n, 7]`` J, or None unless the run asked for it (``energy=True``);
             columns in ``energy_columns``: kinetic, strain, bending, gravity, contact, total
             (sum of the first five), drive_work.
+        contact_normal: ``[n, P, E]`` normal contact force of pulley j on belt point i (a
+            node, or a rigid body's mass centre), N, >= 0; 0 where the point does not touch
+            the pulley. ``contact_normal.sum(axis=2)`` is ``normal_force``. None unless the
+            run asked for it (``contact_forces=True``).
+        contact_friction: ``[n, P, E]`` friction force of belt point i on pulley j, N, along
+            the pulley's counter-clockwise tangent at the point (the belt feels the
+            opposite); 0 where the point does not touch the pulley or no friction acts.
+            ``contact_friction.sum(axis=2)`` is ``friction_force``. None unless recorded.
+        contact_angle: ``[n, P, E]`` angle of belt point i about the centre of pulley j,
+            rad, counter-clockwise from +x, in (-pi, pi]; NaN where the point does not
+            touch the pulley. None unless recorded. :meth:`contact_profile` turns the three
+            into forces by wrap angle along the direction of travel.
         dt: time step, s.
         stages: compiled stages.
         wall_time: wall-clock seconds of the run.
@@ -215,6 +240,9 @@ class Result:
     checkpoint_error: Optional[BaseException] = None
     steps_accepted: int = 0
     steps_rejected: int = 0
+    contact_normal: Optional[np.ndarray] = None
+    contact_friction: Optional[np.ndarray] = None
+    contact_angle: Optional[np.ndarray] = None
 
     @classmethod
     def _from_core(cls, rec: dict[str, Any], **meta: Any) -> "Result":
@@ -427,6 +455,113 @@ class Result:
             util = np.where(slack > 0, (tight - slack) / (slack * capacity), np.where(tight > slack, np.inf, 0.0))
         util[np.isnan(wrap) | (mu == 0)[None, :]] = np.nan
         return Capstan(tight=tight, slack=slack, wrap=wrap, friction=mu, utilisation=util)
+
+    def contact_profile(
+        self,
+        pulley: Union[int, str],
+        start: Optional[float] = None,
+        end: Optional[float] = None,
+        bins: int = 24,
+    ) -> "ContactProfile":
+        """The normal and friction force on the belt round one pulley, by wrap angle along
+        the direction of travel, averaged over the instants from ``start`` to ``end``.
+
+        Each recorded contact (instant, belt point) in the window is placed at its wrap
+        angle psi = s * (angle - origin) mod 2*pi, with s = +1 when the belt travels
+        counter-clockwise round the pulley (``pulley_wrap_sign * travel_direction``) and
+        -1 otherwise, so psi grows along the direction of travel from where the belt
+        meets the pulley. The origin is the mean over the window of the angle of the first
+        point of the arc in the direction of travel (the arc's entry): a fixed place, as
+        the field of a steadily running drive is; it lies within one point spacing after
+        the tangent point where the incoming strand meets the pulley. The wrap angles are
+        then cut into ``bins`` equal bins from 0 to the largest, and each bin gives the
+        mean force per belt point. Points that enter before the mean origin have small
+        negative wrap angles.
+
+        Args:
+            pulley: index or name.
+            start, end: the window, s (inclusive). Default: the whole run.
+            bins: number of bins, an integer >= 1. Default 24.
+
+        Returns:
+            a :class:`ContactProfile`.
+
+        Raises:
+            beltrs.SceneError: contact forces were not recorded (``run(...,
+                contact_forces=True)``), an unknown pulley, a bad window or bin count, or
+                no contact with the pulley in the window.
+        """
+        if self.contact_normal is None or self.contact_friction is None or self.contact_angle is None:
+            raise _beltrs.SceneError(
+                "contact_profile: contact forces were not recorded; run with contact_forces=True "
+                "(or list \"contact_forces\" in the scene file's recording.channels)"
+            )
+        count = self.contact_normal.shape[1]
+        names = list(self.pulley_names)
+        if isinstance(pulley, str):
+            if pulley not in names:
+                raise _beltrs.SceneError(f"pulley = {pulley!r}: no pulley of that name (names: {names})")
+            j = names.index(pulley)
+        elif isinstance(pulley, (int, np.integer)) and not isinstance(pulley, bool) and 0 <= pulley < count:
+            j = int(pulley)
+        else:
+            raise _beltrs.SceneError(
+                f"pulley = {pulley!r}: must be a pulley name or an index from 0 to {count - 1}"
+            )
+        if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1:
+            raise _beltrs.SceneError(f"bins = {bins!r}: must be an integer >= 1")
+        t = np.asarray(self.time, dtype=float)
+        lo = t[0] if start is None else start
+        hi = t[-1] if end is None else end
+        for name, value in (("start", lo), ("end", hi)):
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+                    or not np.isfinite(value):
+                raise _beltrs.SceneError(f"{name} = {value!r}: must be a finite time, s")
+        if hi < lo:
+            raise _beltrs.SceneError(f"end = {hi!r}: must not be before start = {lo!r}")
+        rows = np.flatnonzero((t >= lo) & (t <= hi))
+        direction = int(self._travel_sign("contact_profile")[j])
+        angle = self.contact_angle[rows, j]
+        on = ~np.isnan(angle)
+        if not on.any():
+            raise _beltrs.SceneError(
+                f"contact_profile: no belt point touches pulley {names[j] if names else j!r} "
+                f"between {lo:g} s and {hi:g} s"
+            )
+        # The arc's entry at each instant: the point after the widest gap between the
+        # contact angles round the circle, in the direction of travel.
+        entries, free = [], []
+        for k in range(len(rows)):
+            a = np.sort(np.mod(direction * angle[k][on[k]], 2 * np.pi))
+            if a.size == 0:
+                continue
+            gaps = np.diff(np.append(a, a[0] + 2 * np.pi))
+            entries.append(a[(int(np.argmax(gaps)) + 1) % a.size])
+            free.append(float(gaps.max()))
+        origin = float(np.angle(np.mean(np.exp(1j * np.asarray(entries)))))
+        # A point that entered a little before the mean entry has a small negative psi,
+        # not one near 2*pi: cut the circle in the middle of the free (untouched) part.
+        half = 0.5 * float(np.mean(free))
+        psi = np.mod(direction * angle[on] - origin + half, 2 * np.pi) - half
+        normal = self.contact_normal[rows, j][on]
+        # On the belt, along the direction of travel: the opposite of the force on the
+        # pulley along its counter-clockwise tangent, times the sense of travel.
+        friction = -direction * self.contact_friction[rows, j][on]
+        low, high = min(0.0, float(psi.min())), float(psi.max())
+        edges = np.linspace(low, high + 1e-12 * max(1.0, abs(high)), int(bins) + 1)
+        which = np.clip(np.searchsorted(edges, psi, side="right") - 1, 0, int(bins) - 1)
+        hits = np.bincount(which, minlength=int(bins))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mean_normal = np.bincount(which, normal, minlength=int(bins)) / hits
+            mean_friction = np.bincount(which, friction, minlength=int(bins)) / hits
+        return ContactProfile(
+            angle=0.5 * (edges[:-1] + edges[1:]),
+            normal=mean_normal,
+            friction=mean_friction,
+            count=hits.astype(np.int64),
+            origin=float(np.mod(direction * origin, 2 * np.pi)),
+            direction=direction,
+        )
 
     def lowpass(self, channel: str, cutoff: float) -> np.ndarray:
         """A recorded channel with everything above ``cutoff`` Hz removed (zero phase, along
@@ -660,6 +795,31 @@ class Result:
         )
         frame.attrs["units"] = {q: UNITS[q] for q in PULLEY_SERIES} | {"time": "s"}
         return frame
+
+
+@dataclass
+class ContactProfile:
+    """Forces on the belt round one pulley by wrap angle (:meth:`Result.contact_profile`).
+
+    Attributes:
+        angle: ``[B]`` bin centres: wrap angle along the direction of travel from where the
+            belt meets the pulley, rad.
+        normal: ``[B]`` mean normal force on a belt point in the bin, N (NaN in an empty bin).
+        friction: ``[B]`` mean friction force on a belt point, N, along the direction of
+            travel: positive where the pulley pushes the belt forward (a drive), negative
+            where the belt drags the pulley (a driven pulley); NaN in an empty bin.
+        count: ``[B]`` contacts (instant, point) in each bin.
+        origin: polar angle of the origin, rad, counter-clockwise from +x, in [0, 2*pi).
+        direction: +1 if the belt travels counter-clockwise round the pulley, -1 if
+            clockwise.
+    """
+
+    angle: np.ndarray
+    normal: np.ndarray
+    friction: np.ndarray
+    count: np.ndarray
+    origin: float
+    direction: int
 
 
 @dataclass

@@ -869,9 +869,11 @@ class Solver(_Table):
         _normalise(self)
 
 
-#: Optional large arrays a run can record (``Recording.channels``); every other array of
-#: :class:`beltrs.Result` is always recorded.
-CHANNELS = tuple(ENGINE_DEFAULTS["recording"]["channels"])
+#: Optional large arrays a run can record (``Recording.channels``), each the name of a
+#: keyword of :meth:`beltrs.Simulation.run`; every other array of :class:`beltrs.Result` is
+#: always recorded. All but ``"contact_forces"`` are recorded by default
+#: (``ENGINE_DEFAULTS["recording"]["channels"]``).
+CHANNELS = ("tension", "node_position", "node_velocity", "contact_forces")
 
 
 @dataclass
@@ -890,7 +892,10 @@ class Recording(_Table):
         every: sample every this many steps, >= 1. Give ``interval`` or ``every``, not
             both. Default None.
         channels: optional large arrays to record, from ``"tension"``,
-            ``"node_position"``, ``"node_velocity"``. Default: all three.
+            ``"node_position"``, ``"node_velocity"`` and ``"contact_forces"`` (the normal
+            and friction force of every belt point on every pulley with its angle,
+            ``Result.contact_normal``/``contact_friction``/``contact_angle``, ``[n, P, E]``
+            each). Default: the first three (contact forces are opt-in).
         stabilise: relax to static equilibrium (:meth:`beltrs.Simulation.stabilise`)
             before the run. Default True.
         stabilise_friction: keep belt friction on while relaxing; only with ``stabilise``

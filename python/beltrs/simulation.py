@@ -403,6 +403,7 @@ class Simulation:
         node_position: bool = True,
         node_velocity: bool = True,
         energy: bool = False,
+        contact_forces: bool = False,
         max_samples: Optional[int] = None,
         max_memory: float = DEFAULT_MAX_MEMORY,
         progress: Optional[bool] = None,
@@ -427,14 +428,20 @@ class Simulation:
             energy: record the energies (``Result.energy``), computed at each sample from
                 every node and element. Default False (opt-in: they cost a pass over the
                 belt per sample).
+            contact_forces: record the normal and friction force of every belt point on
+                every pulley, with the point's angle about the pulley centre
+                (``Result.contact_normal``, ``contact_friction``, ``contact_angle``, each
+                ``[n, P, E]``; ``docs/results.md``). Default False (opt-in: ``24*P*E``
+                bytes per instant; off, the friction stages keep no per-point forces).
             max_samples: most recorded instants kept (>= 2). When the buffer is full, every
                 other instant is dropped and the interval doubles, so the result always
                 spans the whole run on a uniform grid (``Result.record_every`` gives the
                 final interval in steps). Default None: as many as fit in ``max_memory``.
             max_memory: bound on the recording's memory when ``max_samples`` is None, bytes.
-                One instant takes ``8 * (8 + 5*E + 13*P + 2*I)`` bytes with every channel on
-                (E nodes, P pulleys, I idlers; tension, node_position, node_velocity and
-                energy switched off save 8*E, 16*E, 16*E and 56); see :meth:`sample_bytes`.
+                One instant takes ``8 * (8 + 5*E + 13*P + 2*I + 3*P*E)`` bytes with every
+                channel on (E nodes, P pulleys, I idlers; tension, node_position,
+                node_velocity, energy and contact_forces switched off save 8*E, 16*E, 16*E,
+                56 and 24*P*E); see :meth:`sample_bytes`.
                 Default 256 MiB.
             progress: show a progress bar on stderr (tqdm if installed, else a built-in
                 one). Default None: when stderr is a terminal, or when the run is estimated
@@ -473,6 +480,7 @@ class Simulation:
         node_position = _flag("node_position", node_position)
         node_velocity = _flag("node_velocity", node_velocity)
         energy = _flag("energy", energy)
+        contact_forces = _flag("contact_forces", contact_forces)
         progress = _flag("progress", progress, none=True)
         dt = self.dt
         every = max(1, int(round(self.default_record_interval() / dt)))
@@ -489,7 +497,7 @@ class Simulation:
             raise _beltrs.SceneError(
                 f"duration = {duration}: {steps:.3e} steps of {dt:.3e} s, more than {_MAX_STEPS:.3e}"
             )
-        per_sample = self.sample_bytes(tension, node_position, node_velocity, energy)
+        per_sample = self.sample_bytes(tension, node_position, node_velocity, energy, contact_forces)
         if max_samples is None:
             max_memory = _real("max_memory", max_memory, "must be a finite number > 0 (bytes)", lambda v: v > 0)
             max_samples = int(min(max_memory // per_sample, _MAX_STEPS))
@@ -509,7 +517,8 @@ class Simulation:
 
         with self._exclusive("run"):
             return self._run(
-                duration, steps, every, (tension, node_position, node_velocity, energy), max_samples, progress,
+                duration, steps, every, (tension, node_position, node_velocity, energy, contact_forces),
+                max_samples, progress,
                 checkpoint, checkpoint_interval, max_wall_time,
             )
 
@@ -518,7 +527,7 @@ class Simulation:
         duration: float,
         steps: int,
         every: int,
-        channels: tuple[bool, bool, bool, bool],
+        channels: tuple[bool, bool, bool, bool, bool],
         max_samples: int,
         progress: Optional[bool],
         checkpoint: Optional[str],
@@ -563,7 +572,7 @@ class Simulation:
         bar = make_bar(progress, steps, end)
         with _DeferSignals():
             try:
-                core.begin_recording(every, *channels[:3], max_samples, channels[3])
+                core.begin_recording(every, *channels[:3], max_samples, *channels[3:])
                 try:
                     # Short chunks (about 0.1 s of wall time each) keep the bar live and let
                     # other threads in between them (a checkpoint, a parameter change); each
@@ -598,7 +607,7 @@ class Simulation:
         return self.last_result
 
     def _with_final_sample(
-        self, channels: tuple[bool, bool, bool, bool], interrupted: bool
+        self, channels: tuple[bool, bool, bool, bool, bool], interrupted: bool
     ) -> tuple[dict[str, Any], int]:
         """The recording just closed (taken over from the engine without a copy), with the
         final state appended when it fell between two instants of the recording grid, so
@@ -610,7 +619,7 @@ class Simulation:
         if len(times) and times[-1] == self.time:
             return rec, every
         # Sample the final state through a fresh one-instant recording and append it.
-        core.begin_recording(1, *channels[:3], 2, channels[3])
+        core.begin_recording(1, *channels[:3], 2, *channels[3:])
         core.end_recording(interrupted)
         last = dict(core.take_recording())
         for key, value in rec.items():
@@ -619,16 +628,23 @@ class Simulation:
         return rec, every
 
     def sample_bytes(
-        self, tension: bool = True, node_position: bool = True, node_velocity: bool = True, energy: bool = False
+        self,
+        tension: bool = True,
+        node_position: bool = True,
+        node_velocity: bool = True,
+        energy: bool = False,
+        contact_forces: bool = False,
     ) -> int:
         """Bytes one recorded instant takes with these channels:
-        ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I)``."""
+        ``8 * (1 + 7*energy + E*(tension + 2*node_position + 2*node_velocity) + 13*P + 2*I
+        + 3*P*E*contact_forces)``."""
         return int(
             self._core.sample_bytes(
                 _flag("tension", tension),
                 _flag("node_position", node_position),
                 _flag("node_velocity", node_velocity),
                 _flag("energy", energy),
+                _flag("contact_forces", contact_forces),
             )
         )
 

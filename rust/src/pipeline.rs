@@ -97,6 +97,10 @@ pub struct Scratch {
     /// Rates of the friction memory from this evaluation: (index into
     /// [`State::creep`], dΔ/dt in m/s). The integrator advances the memory with them.
     pub creep_rate: Vec<(usize, f64)>,
+    /// Keep each pulley contact's friction force (`PulleyContacts::friction`) for the
+    /// recording of contact forces (`Channels::contact_forces`). Off: the friction stages
+    /// skip it, at no cost.
+    pub contact_detail: bool,
 }
 
 impl Scratch {
@@ -138,6 +142,7 @@ impl Scratch {
             control: vec![ControlOutput::default(); p],
             motor: vec![MotorOutput::default(); p],
             creep_rate: Vec::new(),
+            contact_detail: false,
         }
     }
 

@@ -137,6 +137,7 @@ impl Simulation {
             self.state.creep = vec![0.0; model.creep_memory_len()];
         }
         self.scratch = Scratch::new(&model);
+        self.scratch.contact_detail = self.recording.channels.contact_forces;
         self.inertia = Inertia::physical(&model, &self.state.node_mass);
         self.model = model;
         self.profile = profile;
@@ -242,6 +243,7 @@ impl Simulation {
     /// spans the whole run on a uniform grid and its memory stays below
     /// `max_samples × Recording::bytes_per_sample()`.
     pub fn begin_recording(&mut self, channels: Channels, every: u64, max_samples: usize) {
+        self.scratch.contact_detail = channels.contact_forces;
         self.recording = Recording::new(
             channels,
             self.model.nodes,

@@ -57,6 +57,7 @@ fn one_contact(vx: f64, other: V2, dt: Option<f64>, creep: f64) -> (f64, Vec<(us
         },
         &mut force,
         &mut rates,
+        None,
     );
     // The friction force along the tangent t = (−1, 0).
     (-(force[0].x - other.x), rates)

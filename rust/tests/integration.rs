@@ -6,6 +6,7 @@ mod bearing_drag;
 mod belt_drive_defaults;
 mod case_h_statics;
 mod checkpoint;
+mod contact_forces;
 mod creep_friction;
 mod friction_contact;
 mod kernels;

@@ -3,12 +3,13 @@ use crate::common::case_h;
 use beltrs::record::Channels;
 use beltrs::Simulation;
 
-/// Every channel, energies included (they are opt-in).
+/// Every channel, energies and contact forces included (they are opt-in).
 const ALL: Channels = Channels {
     tension: true,
     node_position: true,
     node_velocity: true,
     energy: true,
+    contact_forces: true,
 };
 
 #[test]
@@ -45,6 +46,11 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
             r.energy[k * 7..(k + 1) * 7],
             full.recording.energy[i * 7..(i + 1) * 7]
         );
+        let w = 2 * n; // contact forces: pulleys × nodes per instant
+        assert_eq!(
+            r.contact_normal[k * w..(k + 1) * w],
+            full.recording.contact_normal[i * w..(i + 1) * w]
+        );
     }
     // The whole run is covered: the grid reaches within one interval of the end, and the
     // end itself is sampled.
@@ -52,6 +58,6 @@ fn bounded_recording_decimates_to_a_uniform_grid() {
     assert_eq!(r.time[last].to_bits(), bounded.state.time.to_bits());
     // Memory: capacity never grew past the bound.
     let per = r.bytes_per_sample();
-    assert_eq!(per, 8 * (8 + 5 * 89 + 13 * 2));
+    assert_eq!(per, 8 * (8 + 5 * 89 + 13 * 2 + 3 * 2 * 89));
     assert!(bounded.recording.allocated_bytes() <= max * per);
 }

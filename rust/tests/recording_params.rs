@@ -1,6 +1,6 @@
 //! The `[recording]` table of a scene file: defaults and the rules of each field.
 
-use beltrs::scene::{RecordingParams, RECORDING_CHANNELS};
+use beltrs::scene::{RecordingParams, DEFAULT_RECORDING_CHANNELS, RECORDING_CHANNELS};
 use beltrs::BeltError;
 
 fn rule_of(p: &RecordingParams) -> String {
@@ -11,11 +11,20 @@ fn rule_of(p: &RecordingParams) -> String {
 }
 
 #[test]
-fn defaults_are_valid_and_record_every_channel() {
+fn defaults_are_valid_and_record_every_channel_but_the_contact_forces() {
     let p = RecordingParams::default();
     p.validate().unwrap();
     assert_eq!(p.duration, 1.0);
-    assert_eq!(p.channels, RECORDING_CHANNELS.to_vec());
+    assert_eq!(p.channels, DEFAULT_RECORDING_CHANNELS.to_vec());
+    assert_eq!(RECORDING_CHANNELS[..3], DEFAULT_RECORDING_CHANNELS);
+    assert_eq!(RECORDING_CHANNELS[3], "contact_forces");
+    // Opting in is valid.
+    RecordingParams {
+        channels: vec!["tension".into(), "contact_forces".into()],
+        ..p
+    }
+    .validate()
+    .unwrap();
     assert!(p.stabilise && !p.stabilise_friction);
 }
 
@@ -80,7 +89,7 @@ fn each_rule_names_its_field() {
                 ..base.clone()
             },
             "recording.channels[0]: unknown channel, did you mean \"node_position\"? \
-             (known: tension, node_position, node_velocity)",
+             (known: tension, node_position, node_velocity, contact_forces)",
         ),
     ];
     for (p, want) in cases {

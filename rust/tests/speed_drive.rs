@@ -14,6 +14,7 @@ const PER_PULLEY_ONLY: Channels = Channels {
     node_position: false,
     node_velocity: false,
     energy: false,
+    contact_forces: false,
 };
 
 // ---------------------------------------------------------------------------------------

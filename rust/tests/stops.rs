@@ -19,6 +19,7 @@ const PER_PULLEY_ONLY: Channels = Channels {
     node_position: false,
     node_velocity: false,
     energy: false,
+    contact_forces: false,
 };
 
 fn close(what: &str, got: f64, want: f64, tol: f64) {

@@ -32,6 +32,12 @@ pub struct PulleyContacts {
     load_normal: Vec<V2>,
     /// Elements measured along their wrapped path this step: (element, path length, m).
     pub wrapped: Vec<(usize, f64)>,
+    /// Tangential friction force of each contact on the pulley, N, along the
+    /// counter-clockwise tangent (the normal turned by +90°): the contacts' share of
+    /// `FrictionOutcome::tangential`. Filled by the friction stage only while a recording
+    /// asks for contact forces (`Scratch::contact_detail`); empty otherwise, and when no
+    /// friction acted in this evaluation.
+    pub friction: Vec<f64>,
 }
 
 impl PulleyContacts {
@@ -42,6 +48,7 @@ impl PulleyContacts {
         self.normal_force.clear();
         self.penetration.clear();
         self.wrapped.clear();
+        self.friction.clear();
     }
     /// Number of nodes in contact.
     pub fn len(&self) -> usize {

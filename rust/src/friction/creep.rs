@@ -291,6 +291,9 @@ pub struct MemoryColumn {
 /// never reverses it, whatever Δv. With `dt = Some(∞)` (the static relaxation) every point
 /// takes the stick force within µs·N (a quasi-static limit) and the memory is not
 /// advanced.
+///
+/// `per_contact`, when given, receives each contact's friction force on the pulley along
+/// t, N, in contact order (a recording of contact forces; `None` costs nothing).
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_creep_friction(
     law: &CreepFriction,
@@ -303,6 +306,7 @@ pub fn pulley_creep_friction(
     at: MemoryColumn,
     force: &mut [V2],
     rates: &mut Vec<(usize, f64)>,
+    mut per_contact: Option<&mut Vec<f64>>,
 ) -> FrictionOutcome {
     let r = pulley.radius;
     let (mu_s, mu_k) = (law.static_coefficient, law.kinetic_coefficient);
@@ -350,6 +354,9 @@ pub fn pulley_creep_friction(
         out.force -= t * f;
         out.tangential -= f;
         out.slipping += usize::from(sliding);
+        if let Some(list) = per_contact.as_deref_mut() {
+            list.push(-f);
+        }
     }
     out.torque = r * out.tangential;
     out

@@ -93,6 +93,12 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             &mut sc.force,
             &mut sc.stick[j],
         );
+        if sc.contact_detail {
+            // Each contact's force on the pulley along its tangent, as the solve left it.
+            sc.contacts[j]
+                .friction
+                .extend_from_slice(&sc.stick[j].force);
+        }
         sc.pulley_force[j] += out.force;
         sc.friction[j] = out;
     }
@@ -156,6 +162,11 @@ fn creep_on_pulley(
         omega: s.pulley_omega[j],
         center_velocity: s.pulley_center_velocity(m, j),
     };
+    // The contacts' own list, taken out while the kernel reads the contacts.
+    let mut per_contact = sc
+        .contact_detail
+        .then(|| std::mem::take(&mut sc.contacts[j].friction));
+    let contacts = &sc.contacts[j];
     let out = super::creep::pulley_creep_friction(
         law,
         contacts,
@@ -167,7 +178,11 @@ fn creep_on_pulley(
         super::creep::MemoryColumn { stride, column: j },
         &mut sc.force,
         &mut sc.creep_rate,
+        per_contact.as_mut(),
     );
+    if let Some(list) = per_contact {
+        sc.contacts[j].friction = list;
+    }
     sc.pulley_force[j] += out.force;
     sc.friction[j] = out;
 }

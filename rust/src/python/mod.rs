@@ -274,7 +274,7 @@ impl PySimulation {
     /// Start a fresh recording, sampled now and every `every` steps, keeping at most
     /// `max_samples` (≥ 2) instants: when full, every other instant is dropped and the
     /// interval doubles.
-    #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX, energy=false))]
+    #[pyo3(signature = (every=1, tension=true, node_position=true, node_velocity=true, max_samples=usize::MAX, energy=false, contact_forces=false))]
     #[allow(clippy::too_many_arguments)]
     fn begin_recording(
         &self,
@@ -285,6 +285,7 @@ impl PySimulation {
         node_velocity: bool,
         max_samples: usize,
         energy: bool,
+        contact_forces: bool,
     ) -> PyResult<()> {
         if every == 0 {
             return Err(SceneError::new_err("every = 0: must be ≥ 1"));
@@ -299,6 +300,7 @@ impl PySimulation {
             node_position,
             node_velocity,
             energy,
+            contact_forces,
         };
         self.interrupted.store(false, Ordering::Relaxed);
         self.lock(py).begin_recording(channels, every, max_samples);
@@ -349,7 +351,7 @@ impl PySimulation {
     }
 
     /// Bytes one instant would take with these channels.
-    #[pyo3(signature = (tension, node_position, node_velocity, energy=false))]
+    #[pyo3(signature = (tension, node_position, node_velocity, energy=false, contact_forces=false))]
     fn sample_bytes(
         &self,
         py: Python<'_>,
@@ -357,6 +359,7 @@ impl PySimulation {
         node_position: bool,
         node_velocity: bool,
         energy: bool,
+        contact_forces: bool,
     ) -> usize {
         let sim = self.lock(py);
         let m = &sim.model;
@@ -366,6 +369,7 @@ impl PySimulation {
                 node_position,
                 node_velocity,
                 energy,
+                contact_forces,
             },
             m.nodes,
             m.pulleys.len(),
@@ -576,6 +580,9 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
         idler_force,
         idler_speed,
         energy,
+        contact_normal,
+        contact_friction,
+        contact_angle,
         ..
     } = r;
     d.set_item("time", PyArray1::from_vec(py, time))?;
@@ -603,6 +610,11 @@ fn recording_dict(py: Python<'_>, r: Recording) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("idler_speed", own(idler_speed, &[t, q])?)?;
     if channels.energy {
         d.set_item("energy", own(energy, &[t, ENERGY_COLUMNS.len()])?)?;
+    }
+    if channels.contact_forces {
+        d.set_item("contact_normal", own(contact_normal, &[t, p, n])?)?;
+        d.set_item("contact_friction", own(contact_friction, &[t, p, n])?)?;
+        d.set_item("contact_angle", own(contact_angle, &[t, p, n])?)?;
     }
     d.set_item("energy_columns", ENERGY_COLUMNS.to_vec())?;
     Ok(d)

@@ -16,6 +16,11 @@ pub struct Channels {
     pub node_velocity: bool,
     /// Energies `[n_out, 7]` ([`ENERGY_COLUMNS`]). Default false: opt-in.
     pub energy: bool,
+    /// Contact forces of every belt point on every pulley, with the point's angle
+    /// (`contact_normal`, `contact_friction`, `contact_angle`, each `[n_out, n_pulleys,
+    /// n_nodes]`). Default false: opt-in; off, the friction stages keep no per-contact
+    /// forces.
+    pub contact_forces: bool,
 }
 
 impl Default for Channels {
@@ -25,6 +30,7 @@ impl Default for Channels {
             node_position: true,
             node_velocity: true,
             energy: false,
+            contact_forces: false,
         }
     }
 }
@@ -106,6 +112,18 @@ pub struct Recording {
     /// Energies, J: columns kinetic, strain, bending, gravity, contact, total, drive_work.
     /// `[n_out, 7]`.
     pub energy: Vec<f64>,
+    /// Normal contact force of pulley j on belt point i (node, or rigid body's mass
+    /// centre), N, ≥ 0; 0 where the point does not touch the pulley. Summed over the
+    /// points it is `normal_force`. `[n_out, n_pulleys, n_nodes]`.
+    pub contact_normal: Vec<f64>,
+    /// Friction force of belt point i on pulley j, N, along the pulley's counter-clockwise
+    /// tangent at the point; 0 where the point does not touch it or no friction acts.
+    /// Summed over the points it is `friction_force`. `[n_out, n_pulleys, n_nodes]`.
+    pub contact_friction: Vec<f64>,
+    /// Angle of belt point i about the centre of pulley j, rad, counter-clockwise from +x,
+    /// in (−π, π]; NaN where the point does not touch the pulley.
+    /// `[n_out, n_pulleys, n_nodes]`.
+    pub contact_angle: Vec<f64>,
 }
 
 /// The part of the model a recorded value belongs to.
@@ -122,6 +140,11 @@ pub enum Part {
     /// The model as a whole (time, energies).
     Model,
 }
+
+/// Buffers of a recording ([`Recording::buffers_mut`]).
+const BUFFERS: usize = 21;
+/// Index of `contact_angle` among the buffers (NaN by design off the pulleys).
+const CONTACT_ANGLE: usize = 20;
 
 /// Column names of [`Recording::energy`].
 pub const ENERGY_COLUMNS: [&str; 7] = [
@@ -164,7 +187,7 @@ impl Recording {
     }
 
     /// Every buffer, in a fixed order (the order of [`Recording::row_widths`]).
-    fn buffers_mut(&mut self) -> [&mut Vec<f64>; 18] {
+    fn buffers_mut(&mut self) -> [&mut Vec<f64>; BUFFERS] {
         [
             &mut self.time,
             &mut self.tension,
@@ -184,13 +207,17 @@ impl Recording {
             &mut self.idler_force,
             &mut self.idler_speed,
             &mut self.energy,
+            &mut self.contact_normal,
+            &mut self.contact_friction,
+            &mut self.contact_angle,
         ]
     }
 
     /// Values each buffer gains per recorded instant, same order as the buffers.
-    fn row_widths(&self) -> [usize; 18] {
+    fn row_widths(&self) -> [usize; BUFFERS] {
         let (n, p, q) = (self.nodes, self.pulleys, self.idlers);
         let c = &self.channels;
+        let contact = if c.contact_forces { p * n } else { 0 };
         [
             1,
             if c.tension { self.elements } else { 0 },
@@ -210,12 +237,15 @@ impl Recording {
             q,
             q,
             if c.energy { ENERGY_COLUMNS.len() } else { 0 },
+            contact,
+            contact,
+            contact,
         ]
     }
 
-    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 13·p + 2·q) with all
-    /// channels on (n nodes, p pulleys, q idlers); the channels that are off drop out (the
-    /// energies' 7 of the 8).
+    /// Bytes one recorded instant takes: 8 × (8 + n·(1 + 2 + 2) + 13·p + 2·q + 3·p·n)
+    /// with all channels on (n nodes, p pulleys, q idlers); the channels that are off drop
+    /// out (the energies' 7 of the 8, the contact forces' 3·p·n).
     pub fn bytes_per_sample(&self) -> usize {
         8 * self.row_widths().iter().sum::<usize>()
     }
@@ -270,6 +300,9 @@ impl Recording {
             .zip(widths)
             .enumerate()
             .find_map(|(b, (buf, w))| {
+                if b == CONTACT_ANGLE {
+                    return None; // NaN marks the points off the pulley
+                }
                 let row = &buf[buf.len() - w..];
                 row.iter().position(|v| !v.is_finite()).map(|o| (b, o))
             })?;
@@ -292,6 +325,14 @@ impl Recording {
             14 => ("slipping count".into(), Part::Pulley(offset)),
             15 => ("normal force".into(), Part::Idler(offset)),
             16 => ("angular speed".into(), Part::Idler(offset)),
+            18 | 19 => (
+                if buffer == 18 {
+                    "contact normal force".into()
+                } else {
+                    "contact friction force".into()
+                },
+                Part::Node(offset % self.nodes.max(1)),
+            ),
             _ => (
                 format!(
                     "{} energy",

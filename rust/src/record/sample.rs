@@ -144,6 +144,26 @@ impl Simulation {
                 .push(if c.active { c.normal_force } else { 0.0 });
             r.idler_speed.push(speed(Rigid::Idler(k)));
         }
+        if r.channels.contact_forces {
+            let n = m.nodes;
+            for (j, c) in sc.contacts.iter().enumerate() {
+                let base = r.contact_normal.len();
+                r.contact_normal.resize(base + n, 0.0);
+                r.contact_friction.resize(base + n, 0.0);
+                r.contact_angle.resize(base + n, f64::NAN);
+                let center = s.pulley_center(m, j);
+                // The friction stage lists one force per contact when friction acted.
+                let friction = (c.friction.len() == c.len()).then_some(&c.friction);
+                for (k, &i) in c.node.iter().enumerate() {
+                    r.contact_normal[base + i] += c.normal_force[k];
+                    if let Some(f) = friction {
+                        r.contact_friction[base + i] += f[k];
+                    }
+                    let d = s.position[i] - center;
+                    r.contact_angle[base + i] = d.y.atan2(d.x);
+                }
+            }
+        }
         if let Some(e) = energies {
             r.energy.extend_from_slice(&[
                 e.kinetic,

@@ -657,9 +657,20 @@ impl Default for SolverParams {
 }
 
 /// Optional large arrays a run can record, as named in scene files (`recording.channels`)
-/// and in results. Everything else (time, pulley and idler quantities, energies) is always
-/// recorded.
-pub const RECORDING_CHANNELS: [&str; 3] = ["tension", "node_position", "node_velocity"];
+/// and in results: the element tensions, node positions and velocities, and the contact
+/// forces of every belt point on every pulley with their angles (`Result.contact_normal`,
+/// `contact_friction`, `contact_angle`). Everything else (time, pulley and idler
+/// quantities) is always recorded; `beltrs run` adds the energies.
+pub const RECORDING_CHANNELS: [&str; 4] = [
+    "tension",
+    "node_position",
+    "node_velocity",
+    "contact_forces",
+];
+
+/// The channels recorded when a scene file does not list them: all but the contact
+/// forces, which are opt-in (3 × pulleys × nodes values per instant).
+pub const DEFAULT_RECORDING_CHANNELS: [&str; 3] = ["tension", "node_position", "node_velocity"];
 
 /// How a scene file asks to be run and recorded (the `[recording]` table). The engine
 /// itself does not use it: the command line (`beltrs run`) does. It is read and checked
@@ -675,7 +686,8 @@ pub struct RecordingParams {
     /// Sample every this many steps, ≥ 1. Give `interval` or `every`, not both. Default
     /// `None`.
     pub every: Option<u64>,
-    /// Optional large arrays to record, from [`RECORDING_CHANNELS`]. Default: all of them.
+    /// Optional large arrays to record, from [`RECORDING_CHANNELS`]. Default:
+    /// [`DEFAULT_RECORDING_CHANNELS`] (all but `contact_forces`).
     #[serde(deserialize_with = "forms::strings")]
     pub channels: Vec<String>,
     /// Relax to static equilibrium before the run. Default true.
@@ -691,7 +703,10 @@ impl Default for RecordingParams {
             duration: 1.0,
             interval: None,
             every: None,
-            channels: RECORDING_CHANNELS.iter().map(|s| s.to_string()).collect(),
+            channels: DEFAULT_RECORDING_CHANNELS
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
             stabilise: true,
             stabilise_friction: false,
         }
