@@ -95,6 +95,53 @@ def test_rkf45_run_reports_its_steps_and_saves_them():
     assert cd.run(2e-3, record_interval=2e-4).steps_accepted == 0
 
 
+def creep_drive(formulation: str = "rigid_body", integrator: str = "rkf45", **solver: object) -> Simulation:
+    """small_drive with creep friction (mu_s 0.5, mu_k 0.4, Delta_v 10 mm/s) on both
+    pulleys, relaxed, a torque rising to 0.4 N*m over 2 ms on "a" and a viscous resistance
+    on "b"."""
+    scene = small_drive(formulation, integrator=integrator, **solver)
+    for p in scene.pulleys:
+        p.friction = beltrs.Friction(model="creep", static=0.5, kinetic=0.4, transition_speed=1e-2)
+    scene.pulleys[1].drive = beltrs.Drive(viscous=0.05)
+    sim = Simulation(scene)
+    assert sim.stabilise()["converged"]
+    sim.set_drive("a", beltrs.Drive(time=[0.0, 2e-3], torque=[0.0, 0.4]))
+    return sim
+
+
+@pytest.mark.parametrize("formulation", ["rigid_body", "node_kelvin_voigt"])
+def test_rkf45_integrates_the_creep_memory_with_the_state(formulation, tmp_path):
+    """Creep friction under RKF45: the memory is part of the integrated state. Between
+    steps it is that of the law's play model: non-zero only for points on a pulley, never
+    beyond +-Delta_max (the limit itself: rust/tests/creep_friction.rs). A run resumed
+    from a checkpoint repeats the same steps bit for bit, and RKF45 agrees with central
+    differences (whose step resolves Delta_v = 10 mm/s here)."""
+    sim = creep_drive(formulation)
+    sim.run(3e-3)
+    path = tmp_path / "creep_rk.ck"
+    sim.save_checkpoint(path)
+    back = Simulation.load_checkpoint(path)
+    ra = sim.run(3e-3, record_interval=2e-4)
+    rb = back.run(3e-3, record_interval=2e-4)
+    assert ra.steps_accepted > 0 and ra.steps_rejected > 0
+    assert (ra.steps_accepted, ra.steps_rejected) == (rb.steps_accepted, rb.steps_rejected)
+    assert np.array_equal(ra.tension, rb.tension)
+    assert np.array_equal(sim.state()["creep_displacement"], back.state()["creep_displacement"])
+    memory = sim.state()["creep_displacement"]
+    x = sim.state()["node_position"]
+    live = np.argwhere(memory != 0)
+    assert len(live) > 5
+    assert np.abs(memory).max() <= 1e-4  # exactly: the limit is put back after each step
+    centres = np.array([p.center for p in sim.scene.pulleys])
+    for i, j in live:
+        assert np.hypot(*(x[i] - centres[j])) < sim.scene.pulleys[j].radius
+    # Central differences at a tenth of their stable step resolve the law's damping (up to
+    # 1.5 mu_s N / Delta_v) and converge to RKF45 (rust/tests/creep_friction.rs: 1e-4 there).
+    cd = creep_drive(formulation, integrator="central_difference", time_step_fraction=0.1)
+    rc = cd.run(6e-3, record_interval=2e-4)
+    assert rc.pulley_speed[-1] == pytest.approx(ra.pulley_speed[-1], rel=1e-3)
+
+
 CASE_K_TORQUE = 15.0 / 0.027  # M/r, N
 
 

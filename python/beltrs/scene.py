@@ -119,7 +119,10 @@ class Friction(_Table):
       contact point (a memory kept in the state and in checkpoints) and of the relative
       speed v. Below ``transition_speed`` the contact creeps and mu rises to mu_s (with
       Delta up to ``creep_limit`` and with v); from 1.5 * ``transition_speed`` it slides
-      at mu_k. Pulleys only (an idler with it is refused).
+      at mu_k. Pulleys only (an idler with it is refused). Runs under both integrators:
+      central differences apply it with a stick limit (no step restriction), RKF45
+      (``Solver(integrator="rkf45")``) integrates the memory with the state and resolves
+      the law as it is, so a small ``transition_speed`` costs RKF45 small steps.
 
     Attributes:
         static: static coefficient mu_s, dimensionless, >= kinetic. Default 0 (no friction

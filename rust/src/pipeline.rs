@@ -199,6 +199,23 @@ impl StageContext<'_> {
             self.dt
         }
     }
+
+    /// The step the creep friction law is solved for (`dt` of
+    /// [`crate::friction::creep::pulley_creep_friction`]): `Some(∞)` for quasi-static
+    /// friction, `None` under an adaptive integrator (the law applied as it is, its memory
+    /// integrated with the state), the kick of the coming step under central differences
+    /// (the law with its stick limit).
+    #[inline]
+    pub fn creep_step(&self) -> Option<f64> {
+        if self.effects.quasi_static_friction {
+            Some(f64::INFINITY)
+        } else {
+            match self.model.integrator {
+                crate::integrate::Integrator::Rkf45(_) => None,
+                crate::integrate::Integrator::CentralDifference => Some(self.dt),
+            }
+        }
+    }
 }
 
 /// Evaluate all forces at the current state (thesis eq. 4.57): run the model's stages in

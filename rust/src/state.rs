@@ -80,8 +80,8 @@ pub struct State {
     /// Friction memory: the creep displacement Δ of each (belt point, pulley) pair, m, at
     /// `creep[i * pulleys + j]` (`crate::friction::creep`), reset to 0 when the point
     /// leaves the pulley. Empty unless a pulley has creep friction. An ODE state: the
-    /// integrators advance it with the rates of the last evaluation
-    /// (`Scratch::creep_rate`).
+    /// integrators advance it with the rates of the evaluations (`Scratch::creep_rate`):
+    /// central differences by one explicit step, RKF45 as part of its state vector.
     pub creep: Vec<f64>,
 }
 

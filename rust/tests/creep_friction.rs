@@ -10,7 +10,10 @@ use beltrs::friction::creep::{
     DEFAULT_TRANSITION_SPEED,
 };
 use beltrs::model::Model;
-use beltrs::scene::{DriveSpec, FrictionModel, Scene, Table};
+use beltrs::record::Channels;
+use beltrs::scene::{
+    BeltParams, DriveSpec, Formulation, FrictionModel, IntegratorKind, PulleySpec, Scene, Table,
+};
 use beltrs::Simulation;
 use nalgebra::Vector2;
 
@@ -204,4 +207,241 @@ fn switching_creep_friction_on_and_off_sizes_the_memory() {
     scene.pulleys[1].friction = FrictionModel::None;
     sim.set_scene(&scene).unwrap();
     assert!(sim.state.creep.is_empty());
+}
+
+// ------------------------------------------------------------------ creep under RKF45
+
+/// A small rigid-body drive (R = 0.05 m, centres 0.3 m apart, EA = 2e4 N, 0.1 kg/m, 60
+/// bodies, 1 % short, no gravity) with creep friction on both pulleys: a torque rising to
+/// `torque` N·m over 2 ms on "a", a viscous resistance on "b".
+fn creep_drive(integrator: IntegratorKind, torque: f64, dv: f64) -> Scene {
+    let law = CreepFriction {
+        static_coefficient: 0.5,
+        kinetic_coefficient: 0.4,
+        transition_speed: dv,
+        creep_limit: 1e-4,
+    };
+    let pulley = |name: &str, x: f64, drive: DriveSpec| PulleySpec {
+        name: name.into(),
+        center: [x, 0.0],
+        radius: 0.05,
+        mass: 1.0,
+        inertia: Some(1e-3),
+        contact_stiffness: 1e7,
+        friction: FrictionModel::Creep(law),
+        drive: Some(drive),
+        ..Default::default()
+    };
+    let path = 2.0 * 0.3 + std::f64::consts::TAU * 0.05;
+    let mut scene = Scene {
+        belt: BeltParams {
+            formulation: Formulation::RigidBody,
+            axial_stiffness: 2e4,
+            mass_per_length: 0.1,
+            bending_stiffness: 1e-4,
+            damping_ratio: 0.1,
+            length: Some(path / 1.01),
+            elements: Some(60),
+            ..Default::default()
+        },
+        pulleys: vec![
+            pulley(
+                "a",
+                0.0,
+                DriveSpec {
+                    torque: Table {
+                        x: vec![0.0, 2e-3],
+                        y: vec![0.0, torque],
+                    },
+                    ..Default::default()
+                },
+            ),
+            pulley(
+                "b",
+                0.3,
+                DriveSpec {
+                    viscous: 0.05,
+                    ..Default::default()
+                },
+            ),
+        ],
+        gravity: 0.0,
+        ..Default::default()
+    };
+    scene.solver.integrator = integrator;
+    scene
+}
+
+/// Checks on the creep memory of a simulation: only points on a pulley carry creep, and
+/// never beyond ±Δmax. Returns (pairs with creep, pairs held at ±Δmax).
+fn memory_census(sim: &Simulation) -> (usize, usize) {
+    let stride = sim.model.pulleys.len();
+    let (mut live, mut held) = (0, 0);
+    for (k, &d) in sim.state.creep.iter().enumerate() {
+        if d == 0.0 {
+            continue;
+        }
+        let (i, j) = (k / stride, k % stride);
+        let FrictionModel::Creep(law) = sim.model.pulleys[j].friction else {
+            panic!("creep at pulley {j} without creep friction");
+        };
+        assert!(d.abs() <= law.creep_limit, "point {i}, pulley {j}: Δ = {d}");
+        let r = (sim.state.position[i] - sim.state.pulley_center(&sim.model, j)).norm();
+        assert!(
+            r < sim.model.pulleys[j].radius,
+            "point {i}, pulley {j} at r = {r}"
+        );
+        live += 1;
+        held += usize::from(d.abs() == law.creep_limit);
+    }
+    (live, held)
+}
+
+#[test]
+fn rkf45_integrates_the_creep_memory_and_resumes_bit_for_bit() {
+    let scene = creep_drive(IntegratorKind::Rkf45, 0.4, 1e-2);
+    let mut a = Simulation::new(&scene).unwrap();
+    assert_eq!(a.state.creep.len(), 2 * a.model.nodes);
+    a.advance_to(2e-3, u64::MAX).unwrap();
+    // Stop within a stretch (a step count, not a time).
+    a.advance_to(4e-3, 40).unwrap();
+    let (live, _) = memory_census(&a);
+    assert!(live > 5, "only {live} contacts carry creep");
+    let dir = std::env::temp_dir().join(format!("beltrs-creeprk-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("creep.ck");
+    checkpoint::save(&a, &path).unwrap();
+    let mut b = checkpoint::load(&path).unwrap();
+    assert_eq!(b.state, a.state);
+    for sim in [&mut a, &mut b] {
+        sim.begin_recording(Channels::default(), 5, usize::MAX);
+        assert!(sim.advance_to(6e-3, u64::MAX).unwrap());
+        sim.end_recording().unwrap();
+    }
+    assert_eq!(a.recording, b.recording);
+    assert_eq!(a.state, b.state);
+    for (x, y) in a.state.creep.iter().zip(&b.state.creep) {
+        assert_eq!(x.to_bits(), y.to_bits());
+    }
+    let (live, _) = memory_census(&a);
+    assert!(live > 5, "{live} live");
+    assert!(a.state.accepted_steps > 100 && a.state.rejected_steps > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn rkf45_and_central_differences_agree_with_creep_friction() {
+    // Relaxed, then 6 ms with the torque ramped over 2 ms. With Δv = 10 mm/s the law's
+    // damping (up to 1.5·µs·N/Δv ≈ 4700 N·s/m on bodies of 1.6 g) is resolved by central
+    // differences at a tenth of their stable step and below, so both integrators solve
+    // the same ODE and central differences converge to RKF45 as their step falls
+    // (measured: 9·10⁻⁴, 1.1·10⁻⁴ and 2.3·10⁻⁵ of the pulley speeds at 0.5, 0.1 and 0.02
+    // of the stable step; a tolerance of about twice that). An unrelaxed start is no test: the belt, 1 % short, bounces on
+    // the pulleys, and each separation resets a contact's memory.
+    let end = 6e-3;
+    let run = |integrator, fraction: f64| {
+        let mut scene = creep_drive(integrator, 0.4, 1e-2);
+        scene.solver.time_step_fraction = fraction;
+        let mut sim = Simulation::new(&scene).unwrap();
+        assert!(sim.stabilise(&Default::default()).unwrap().converged);
+        sim.advance_to(end, u64::MAX).unwrap();
+        sim.state.pulley_omega.clone()
+    };
+    let rk = run(IntegratorKind::Rkf45, 0.5);
+    assert!(rk[0] > 0.5 && rk[1] > 0.5, "{rk:?}");
+    let gap = |w: &[f64]| {
+        (0..2)
+            .map(|j| (w[j] - rk[j]).abs() / rk[j])
+            .fold(0.0, f64::max)
+    };
+    let gaps: Vec<f64> = [0.5, 0.1, 0.02]
+        .iter()
+        .map(|&f| gap(&run(IntegratorKind::CentralDifference, f)))
+        .collect();
+    assert!(gaps[2] < gaps[1] && gaps[1] < gaps[0], "{gaps:?}");
+    assert!(gaps[0] < 2e-3 && gaps[2] < 5e-5, "{gaps:?}");
+}
+
+/// The contact of `one_contact` as an ODE: the point (0.01 kg, N = 100 N, the pulley at
+/// rest) pulled along +x by `load(t)` N; state [x, vx, Δ]. The kernel applies the law as
+/// it is (no step) and gives dΔ/dt.
+fn block(load: &dyn Fn(f64) -> f64, t: f64, y: &[f64], dy: &mut [f64]) {
+    let other = V2::new(load(t), 0.0);
+    let (friction, rates) = one_contact(y[1], other, None, y[2]);
+    dy[0] = y[1];
+    // The friction force is along t = (−1, 0).
+    dy[1] = (other.x - friction) / 0.01;
+    dy[2] = rates.first().map_or(0.0, |r| r.1);
+}
+
+/// The smooth step from `a` at `t0` to `b` at `t1`.
+fn ramp(t: f64, t0: f64, a: f64, t1: f64, b: f64) -> f64 {
+    beltrs::contact::nonlinear::cubic_step(t, t0, a, t1, b)
+}
+
+#[test]
+fn under_rkf45_the_memory_is_the_creep_spring_the_limit_and_the_unwinding() {
+    use beltrs::integrate::rkf45::{Rkf45, Rkf45Params};
+    let (n, mu_s, mu_k, limit) = (100.0, 0.5, 0.4, 1e-4);
+    // Load to half of µs·N over 20 ms and hold; at T1 to 1.2·µs·N over 10 ms (breakaway,
+    // sliding); at T2 = T1 + 12 ms reverse to −½µs·N within 0.1 ms and hold until T3.
+    // Below Δv the law is rate-dependent: a loaded contact creeps on at speeds of order Δv
+    // until the creep part alone carries the load, over times of order Δmax/Δv = 0.1 s.
+    const T1: f64 = 0.3;
+    const T2: f64 = T1 + 0.012;
+    const T3: f64 = T2 + 0.6;
+    let load = |t: f64| {
+        if t < T1 {
+            ramp(t, 0.0, 0.0, 0.02, 0.5 * mu_s * n)
+        } else if t < T2 {
+            ramp(t, T1, 0.5 * mu_s * n, T1 + 0.01, 1.2 * mu_s * n)
+        } else {
+            ramp(t, T2, 1.2 * mu_s * n, T2 + 1e-4, -0.5 * mu_s * n)
+        }
+    };
+    let mut f = |t: f64, y: &[f64], dy: &mut [f64]| block(&load, t, y, dy);
+    let mut rk = Rkf45::new(
+        Rkf45Params {
+            relative_tolerance: 1e-8,
+            absolute_tolerance: 1e-11,
+            ..Default::default()
+        },
+        3,
+    )
+    .unwrap();
+    let (mut t, mut y) = (0.0, [0.0, 0.0, 0.0]);
+    // Step as the engine does (integrate::adaptive): after each accepted step Δ is put back
+    // within ±Δmax (the stages may carry it past the limit; µ₁ is flat there).
+    let mut advance = |rk: &mut Rkf45, t: &mut f64, y: &mut [f64; 3], to: f64, turn: &mut f64| {
+        while *t < to {
+            rk.step(t, y, to, &mut f).unwrap();
+            y[2] = y[2].clamp(-limit, limit);
+            *turn = turn.max(y[0]);
+        }
+    };
+    let mut turn = f64::NEG_INFINITY;
+    // 1. A creep spring: the memory is the displacement (the same rates, bit for bit), and
+    //    at rest the creep part alone carries the load, µ₁(Δ)·N = F: Δ = Δmax/2.
+    advance(&mut rk, &mut t, &mut y, T1, &mut turn);
+    assert_eq!(y[2].to_bits(), y[0].to_bits());
+    let settled = (y[2] - 0.5 * limit).abs();
+    assert!(settled < 1e-3 * limit, "Δ = {}, off by {settled}", y[2]);
+    // 2. Breakaway: the memory holds at Δmax while the point slides at µk·N.
+    advance(&mut rk, &mut t, &mut y, T2 - 1e-3, &mut turn);
+    let v0 = y[1];
+    advance(&mut rk, &mut t, &mut y, T2, &mut turn);
+    let accel = (y[1] - v0) / 1e-3;
+    let want = (1.2 * mu_s - mu_k) * n / 0.01;
+    assert!((accel - want).abs() < 1e-9 * want, "{accel} vs {want}");
+    assert_eq!(y[2], limit);
+    // 3. Reversed: the memory unwinds from Δmax at once (not from the slid distance), so
+    //    the point comes back 1.5·Δmax from its turning point to rest at Δ = −Δmax/2.
+    turn = y[0];
+    advance(&mut rk, &mut t, &mut y, T3, &mut turn);
+    let back = turn - y[0];
+    assert!((y[2] + 0.5 * limit).abs() < 1e-3 * limit, "Δ = {}", y[2]);
+    assert!(
+        (back - 1.5 * limit).abs() < 1e-3 * limit,
+        "came back {back}"
+    );
 }

@@ -118,7 +118,10 @@ fn global_error_scales_with_tolerance() {
             "tol {}: error {err:e} after {steps} steps",
             tols[k]
         );
-        assert!(rk.stats.evaluations >= 6 * (rk.stats.accepted + rk.stats.rejected));
+        // The first stage once per step (the starting-step rule evaluates it with one probe),
+        // five more per attempt.
+        let (acc, rej) = (rk.stats.accepted, rk.stats.rejected);
+        assert_eq!(rk.stats.evaluations, 2 + (acc - 1) + 5 * (acc + rej));
         if k > 0 {
             let slope = (runs[k - 1].0 / err).log10() / 2.0;
             assert!(
@@ -250,4 +253,103 @@ fn parameters_are_validated_by_name() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("rkf45.min_step"), "{e}");
+}
+
+#[test]
+fn a_rejected_attempt_reuses_the_first_stage() {
+    // The derivative jump of `step_control_rejects_and_recovers`: rejections happen, and
+    // each costs five evaluations, not six (k₀ = f(t, y) does not change with the step).
+    let mut calls = 0u64;
+    let mut f = |t: f64, y: &[f64], dy: &mut [f64]| {
+        calls += 1;
+        dy[0] = if t < 1.0 { -y[0] } else { -1000.0 * y[0] };
+    };
+    let mut rk = Rkf45::new(Rkf45Params::default(), 1).unwrap();
+    let (mut t, mut y) = (0.0, [1.0]);
+    rk.advance_to(&mut t, &mut y, 1.01, &mut f).unwrap();
+    let (acc, rej) = (rk.stats.accepted, rk.stats.rejected);
+    assert!(rej > 0);
+    assert_eq!(calls, rk.stats.evaluations);
+    assert_eq!(calls, 2 + (acc - 1) + 5 * (acc + rej));
+}
+
+#[test]
+fn a_known_first_stage_replaces_its_evaluation() {
+    // Handing over f(t, y) gives the same steps to the last bit, one evaluation fewer per
+    // step.
+    let run = |hand_over: bool| {
+        let mut rk = Rkf45::new(Rkf45Params::default(), 2).unwrap();
+        let (mut t, mut y) = (0.0, [1.0, 0.0]);
+        let mut calls = 0u64;
+        let mut f = |t: f64, y: &[f64], dy: &mut [f64]| {
+            calls += 1;
+            oscillator(t, y, dy)
+        };
+        for _ in 0..50 {
+            if hand_over && rk.next_step() > 0.0 {
+                oscillator(t, &y, rk.known_first_stage());
+            }
+            rk.step(&mut t, &mut y, 100.0, &mut f).unwrap();
+        }
+        (t, y, calls)
+    };
+    let (t0, y0, c0) = run(false);
+    let (t1, y1, c1) = run(true);
+    assert_eq!(t0.to_bits(), t1.to_bits());
+    assert_eq!(y0.map(f64::to_bits), y1.map(f64::to_bits));
+    assert_eq!(c0 - c1, 49, "{c0} vs {c1}");
+}
+
+#[test]
+fn dormant_components_leave_the_norm_alone_until_they_wake() {
+    // The oscillator with 98 extra components that stay zero (a memory of contacts that
+    // never touch): dormant, they change nothing, step for step; counted, they dilute the
+    // RMS norm by √(2/100) and the steps grow.
+    let run = |dormant: bool, wake: bool| {
+        let mut rk = Rkf45::new(Rkf45Params::default(), 100).unwrap();
+        if dormant {
+            rk.set_dormant_from(2);
+        }
+        let mut y = vec![0.0; 100];
+        y[0] = 1.0;
+        let mut t = 0.0;
+        let mut f = |t: f64, y: &[f64], dy: &mut [f64]| {
+            oscillator(t, y, dy);
+            dy[2..].fill(0.0);
+            if wake && t > 5.0 {
+                // One memory component wakes: it follows cos t from t = 5.
+                dy[2] = y[1];
+            }
+        };
+        rk.advance_to(&mut t, &mut y, 10.0, &mut f).unwrap();
+        (y, rk.stats)
+    };
+    let plain = oscillator_stats(10.0);
+    let (y, st) = run(true, false);
+    assert_eq!(st.accepted, plain.1.accepted);
+    assert_eq!(st.rejected, plain.1.rejected);
+    assert_eq!(y[0].to_bits(), plain.0[0].to_bits());
+    let (_, diluted) = run(false, false);
+    assert!(
+        diluted.accepted < st.accepted,
+        "{} vs {}",
+        diluted.accepted,
+        st.accepted
+    );
+    // Awake, the component is counted and its error sets steps like any other: the run
+    // differs from the one where it sleeps, and it integrates ∫₅ᵗ −sin = cos t − cos 5 with
+    // the oscillator's accuracy.
+    let (yw, sw) = run(true, true);
+    assert!(sw.accepted != st.accepted || yw[0] != y[0]);
+    let exact = (10.0f64).cos() - (5.0f64).cos();
+    assert!((yw[2] - exact).abs() < 1e-5, "{} vs {exact}", yw[2]);
+}
+
+/// The plain oscillator to `t_end` at the default settings: (y, stats).
+fn oscillator_stats(t_end: f64) -> ([f64; 2], beltrs::integrate::rkf45::Rkf45Stats) {
+    let mut rk = Rkf45::new(Rkf45Params::default(), 2).unwrap();
+    let (mut t, mut y) = (0.0, [1.0, 0.0]);
+    rk.advance_to(&mut t, &mut y, t_end, &mut oscillator)
+        .unwrap();
+    (y, rk.stats)
 }

@@ -38,7 +38,10 @@ use crate::error::{BeltError, BeltResult};
 /// near its capacity at ≥ 1 m/s), lie well above 1.5·Δv, so slip arcs slide at µk as in
 /// creep theory; while a belt held on a pulley creeps at far less. Kubas's 10⁻⁵ m/s is
 /// accepted too: under central differences the law is applied with a stick limit (see
-/// [`pulley_creep_friction`]), so Δv does not limit the step.
+/// [`pulley_creep_friction`]), so Δv does not limit the step. Under RKF45 the law is
+/// applied as it is, and Δv sets the step of a sticking contact (its speed part is a
+/// damper of up to 1.5·µs·N/Δv, so explicit steps of about m·Δv/(µs·N)): the smaller Δv,
+/// the more steps (docs/kubas.md measures them).
 pub const DEFAULT_TRANSITION_SPEED: f64 = 1e-3;
 
 /// Default Δmax of a scene's creep friction ([`CreepFriction::creep_limit`]), m: 10⁻⁴
@@ -181,8 +184,10 @@ fn sign(x: f64) -> f64 {
 }
 
 /// The friction memory: the creep displacement Δ of every (body, pulley) contact point, m.
-/// Plain state data: the integrator advances it with [`CreepFriction::creep_rate`], and it is
-/// saved and restored as a flat slice (checkpoints).
+/// Plain state data: the integrator advances it with [`CreepFriction::creep_rate`] (central
+/// differences by one explicit step per step, RKF45 as components of its state vector,
+/// with their error in the step control), and it is saved and restored as a flat slice
+/// (checkpoints).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct CreepMemory {
     /// Number of pulleys (the row length).
@@ -275,8 +280,8 @@ pub struct MemoryColumn {
 /// the integrator advances the memory with it, so the law is an ODE on the state.
 ///
 /// `dt` is the velocity update of the coming explicit step (s), or `None` for an
-/// integrator that resolves the law itself (an adaptive Runge–Kutta: the law is applied as
-/// it is). With `Some(dt)` the law gets a **stick limit**, the stiff limit of solving it
+/// integrator that resolves the law itself (RKF45, `integrate::adaptive`: the law is
+/// applied as it is, and the memory is a part of its state vector with these rates). With `Some(dt)` the law gets a **stick limit**, the stiff limit of solving it
 /// implicitly for the end-of-step speed: in the creep range the force changes by up to
 /// 1.5·µs·N/Δv per m/s, a damping that an explicit step resolves only below
 /// m·Δv/(µs·N) (10⁻¹⁰ s for case K). Where the law's force would reverse the relative

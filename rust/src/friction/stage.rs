@@ -39,6 +39,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         return;
     }
     let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
+    let creep_step = cx.creep_step();
     let kick = cx.dt;
     let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
@@ -59,7 +60,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
                         &law,
                         j,
                         creep_held(p, hold.map(|h| h.1), s.time),
-                        friction_dt,
+                        creep_step,
                         m,
                         s,
                         sc,
@@ -122,14 +123,16 @@ fn creep_held(
 }
 
 /// Creep friction on pulley `j` (`held`: a brake or speed-controlled drive prescribes its
-/// speed this step; `mass`: the integrator's point masses). First forgets the creep of the points in the pulley's search window
-/// that no longer touch it (a contact that separates starts afresh), then applies the law.
+/// speed this step; `step`: the step the law is solved for, [`StageContext::creep_step`];
+/// `mass`: the integrator's point masses). First forgets the creep of the points in the
+/// pulley's search window that no longer touch it (a contact that separates starts
+/// afresh), then applies the law.
 #[allow(clippy::too_many_arguments)]
 fn creep_on_pulley(
     law: &super::creep::CreepFriction,
     j: usize,
     held: bool,
-    friction_dt: f64,
+    step: Option<f64>,
     m: &crate::model::Model,
     s: &mut crate::state::State,
     sc: &mut crate::pipeline::Scratch,
@@ -170,7 +173,7 @@ fn creep_on_pulley(
         &pulley,
         &s.velocity,
         mass,
-        Some(friction_dt),
+        step,
         &s.creep,
         super::creep::MemoryColumn { stride, column: j },
         &mut sc.force,

@@ -14,6 +14,20 @@
 //! - The error norm is the RMS of eᵢ/(atol + rtol·|yᵢ|) over all components in their SI
 //!   units (m, rad, m/s, rad/s; the drives' work is left out of the norm).
 //! - After each accepted step the takeups' stops are applied, as central differences do.
+//! - The creep friction memory ([`crate::friction::creep`]) is part of the vector: the
+//!   creep displacement Δ of every (belt point, pulley) pair, with dΔ/dt from the force
+//!   evaluation (the relative speed v, 0 while Δ is held at ±Δmax). Its error enters the
+//!   norm (in m) like every other component; the pairs not in contact are dormant
+//!   ([`Rkf45::set_dormant_from`]): zero, with zero rate, they are left out of the mean.
+//!   The law is applied as it is (no stick limit, which belongs to a fixed step).
+//! - Each accepted state is evaluated at once (the next step's first Fehlberg stage,
+//!   handed to the integrator, so it costs no extra evaluation), and the creep memory is
+//!   settled from its contacts: a pair that is not in contact forgets its creep (a contact
+//!   that separates starts afresh), and a Δ beyond ±Δmax (a stage can cross the limit
+//!   within a step) is put back on it. Neither changes the derivative (a separated pair has
+//!   no friction and no rate; µ₁ is flat beyond Δmax, and the rate is the same on the
+//!   limit as beyond it), so the first stage stays exact, and between steps the memory is
+//!   always that of the play model: zero off the pulleys, within ±Δmax on them.
 //!
 //! Effects solved for a fixed step (stick-force friction, speed holds, brakes, running
 //! resistance, loads) are refused by the scene rules under this integrator.
@@ -31,7 +45,7 @@ const WORK_SCALE: f64 = 1e300;
 
 impl Simulation {
     /// Number of components of the flat state: positions and rigid coordinates, speeds,
-    /// the drives' work.
+    /// the drives' work, the creep memory.
     fn flat_len(&self) -> usize {
         let m = &self.model;
         let coordinates = m
@@ -40,7 +54,7 @@ impl Simulation {
             .iter()
             .filter(|&&d| self.state.rigid(d).0.is_some())
             .count();
-        4 * m.nodes + coordinates + m.dofs.rigid.len() + 1
+        4 * m.nodes + coordinates + m.dofs.rigid.len() + 1 + self.state.creep.len()
     }
 
     /// The state as one flat vector (see [`Simulation::flat_len`]).
@@ -56,6 +70,7 @@ impl Simulation {
         y.extend(s.velocity.iter().flat_map(|v| [v.x, v.y]));
         y.extend(self.model.dofs.rigid.iter().map(|&d| s.rigid_speed(d)));
         y.push(s.drive_work);
+        y.extend_from_slice(&s.creep);
     }
 
     /// Put a flat vector back into the state.
@@ -83,12 +98,19 @@ impl Simulation {
             k += 1;
         }
         s.drive_work = y[k];
+        s.creep.copy_from_slice(&y[k + 1..]);
     }
 
     /// dy/dt at (t, y): the speeds, and the accelerations of one force evaluation.
     fn derivative(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.state.time = t;
         self.unpack(y);
+        self.rates(dy);
+    }
+
+    /// dy/dt at the state: the speeds, the accelerations of one force evaluation, the
+    /// drives' power and the creep rates.
+    fn rates(&mut self, dy: &mut [f64]) {
         let dt = self.model.dt;
         self.evaluate_full(Effects::ALL, dt, dt, 1.0, false);
         let (m, s, sc) = (&self.model, &self.state, &self.scratch);
@@ -118,6 +140,34 @@ impl Simulation {
             }
         }
         dy[k] = power;
+        let creep = &mut dy[k + 1..];
+        creep.fill(0.0);
+        for &(i, rate) in &sc.creep_rate {
+            creep[i] = rate;
+        }
+    }
+
+    /// Settle the creep memory after an accepted step, from the evaluation of the accepted
+    /// state: the pairs in contact keep their creep, put back within ±Δmax; the others
+    /// forget it (module docs). `y` is the accepted state vector (read only).
+    fn settle_creep(&mut self, y: &[f64]) {
+        if self.state.creep.is_empty() {
+            return;
+        }
+        let (m, s, sc) = (&self.model, &mut self.state, &self.scratch);
+        let start = y.len() - s.creep.len();
+        let stride = m.pulleys.len();
+        s.creep.fill(0.0);
+        for (j, p) in m.pulleys.iter().enumerate() {
+            let crate::scene::FrictionModel::Creep(law) = p.friction else {
+                continue;
+            };
+            let limit = law.creep_limit;
+            for &i in &sc.contacts[j].node {
+                let idx = i * stride + j;
+                s.creep[idx] = y[start + idx].clamp(-limit, limit);
+            }
+        }
     }
 
     /// The adaptive integrator of this model with its next step from the state.
@@ -128,14 +178,24 @@ impl Simulation {
         params.initial_step = self.state.adaptive_step;
         let mut rk = Rkf45::new(params, len)?;
         let mut scales = vec![1.0; len];
-        scales[len - 1] = WORK_SCALE;
+        let work = len - self.state.creep.len() - 1;
+        scales[work] = WORK_SCALE;
         rk.set_absolute_scales(&scales)?;
+        rk.set_dormant_from(work + 1);
         Ok(rk)
     }
 
-    /// One accepted RKF45 step from the state towards `target` (s): the state, its time,
-    /// the step counters and the next step are updated, and the takeups' stops applied.
-    fn adaptive_step(&mut self, rk: &mut Rkf45, y: &mut Vec<f64>, target: f64) -> BeltResult<()> {
+    /// One accepted RKF45 step from the state towards `target` (s), landing on it when
+    /// within `snap` (s) of it: the state, its time, the step counters and the next step
+    /// are updated, the takeups' stops applied, the accepted state evaluated (the next
+    /// step's first stage, handed to `rk`) and its creep memory settled.
+    fn adaptive_step(
+        &mut self,
+        rk: &mut Rkf45,
+        y: &mut Vec<f64>,
+        target: f64,
+        snap: f64,
+    ) -> BeltResult<()> {
         crate::interrupt::check(self.model.nodes as u64)?;
         self.pack(y);
         let mut t = self.state.time;
@@ -168,6 +228,12 @@ impl Simulation {
         if y.iter().any(|v| !v.is_finite()) {
             return Err(self.locate_non_finite());
         }
+        if (target - self.state.time).abs() <= snap {
+            self.state.time = target;
+        }
+        // The first stage of the next step, and the contacts that settle the memory.
+        self.rates(rk.known_first_stage());
+        self.settle_creep(y);
         Ok(())
     }
 
@@ -233,11 +299,8 @@ impl Simulation {
                     target = end.min(at);
                 }
             }
-            self.adaptive_step(&mut rk, &mut y, target)?;
+            self.adaptive_step(&mut rk, &mut y, target, snap(target))?;
             taken += 1;
-            if (target - self.state.time).abs() <= snap(target) {
-                self.state.time = target;
-            }
         }
         self.state.time = end;
         Ok(true)

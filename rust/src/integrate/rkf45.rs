@@ -13,6 +13,16 @@
 //! ≤ 1. The next step is h·min(max_growth, max(max_shrink, safety·err^(−1/5))), and it does
 //! not grow right after a rejection. A step that would fall below `min_step` is an error
 //! naming the time and the step, never a silent loss of accuracy.
+//!
+//! The first stage k₀ = f(t, y) depends only on the step's start, so it is evaluated once
+//! per step, not once per attempt: a rejected attempt costs five evaluations, an accepted
+//! step six. A caller that has f(t, y) already (it evaluated the state for its own
+//! reasons) can hand it over with [`Rkf45::known_first_stage`].
+//!
+//! Dormant components ([`Rkf45::set_dormant_from`]): components of a sparse memory (e.g.
+//! the creep displacement of every belt point at every pulley, of which only the points in
+//! contact are live) that are zero at both ends of a step with zero error are left out of
+//! the mean, so that the memory of the points not in contact does not dilute the norm.
 
 // Index loops over components read like the tableau they implement.
 #![allow(clippy::needless_range_loop)]
@@ -222,6 +232,10 @@ pub struct Rkf45 {
     stage: Vec<f64>,
     low: Vec<f64>,
     high: Vec<f64>,
+    /// `k[0]` holds f(t, y) at the coming step's start.
+    first_known: bool,
+    /// Components from here on are dormant (module docs).
+    dormant_from: usize,
 }
 
 impl Rkf45 {
@@ -242,7 +256,23 @@ impl Rkf45 {
             stage: v(),
             low: v(),
             high: v(),
+            first_known: false,
+            dormant_from: len,
         })
+    }
+
+    /// The first-stage buffer, for a caller that has f(t, y) at the start of the coming
+    /// step: it must fill the slice with exactly that derivative (the state and time that
+    /// the next [`Rkf45::step`] starts from), and the step then does not evaluate it again.
+    pub fn known_first_stage(&mut self) -> &mut [f64] {
+        self.first_known = true;
+        &mut self.k[0]
+    }
+
+    /// Components `start..` are dormant: left out of the error norm's mean while they are
+    /// zero at both ends of a step with zero error (module docs). Default: none.
+    pub fn set_dormant_from(&mut self, start: usize) {
+        self.dormant_from = start.min(self.scales.len());
     }
 
     /// The step the next call will try first, s (0 before the first step when automatic).
@@ -282,17 +312,18 @@ impl Rkf45 {
             self.params.relative_tolerance,
             self.params.absolute_tolerance,
         );
-        let n = e.len().max(1) as f64;
-        let s: f64 = e
-            .iter()
-            .zip(y.iter().zip(y_new))
-            .zip(&self.scales)
-            .map(|((e, (a, b)), sc)| {
-                let q = e / (at * sc + rt * a.abs().max(b.abs()));
-                q * q
-            })
-            .sum();
-        (s / n).sqrt()
+        let mut s = 0.0;
+        let mut n = 0usize;
+        for i in 0..e.len() {
+            let (a, b) = (y[i], y_new[i]);
+            if i >= self.dormant_from && e[i] == 0.0 && a == 0.0 && b == 0.0 {
+                continue;
+            }
+            let q = e[i] / (at * self.scales[i] + rt * a.abs().max(b.abs()));
+            s += q * q;
+            n += 1;
+        }
+        (s / n.max(1) as f64).sqrt()
     }
 
     /// Hairer's starting step (Solving ODEs I, II.4): from the sizes of y, f(y) and an
@@ -344,7 +375,14 @@ impl Rkf45 {
     {
         let n = y.len();
         if self.h <= 0.0 {
+            // Evaluates k₀ = f(t, y) on the way.
             self.h = self.starting_step(*t, y, f);
+            self.first_known = true;
+        }
+        if !self.first_known {
+            f(*t, y, &mut self.k[0]);
+            self.stats.evaluations += 1;
+            self.first_known = true;
         }
         let min_step = if self.params.min_step > 0.0 {
             self.params.min_step
@@ -369,8 +407,8 @@ impl Rkf45 {
                     absolute_tolerance: self.params.absolute_tolerance,
                 });
             }
-            self.stages(*t, y, h, f);
-            self.stats.evaluations += 6;
+            self.stages(*t, y, h, f, 1);
+            self.stats.evaluations += 5;
             let mut bad = None;
             for i in 0..n {
                 let (mut lo, mut hi) = (0.0, 0.0);
@@ -420,6 +458,7 @@ impl Rkf45 {
                 };
                 y.copy_from_slice(kept);
                 *t = if last { t_end } else { *t + h };
+                self.first_known = false;
                 self.stats.accepted += 1;
                 self.stats.smallest_step = self.stats.smallest_step.min(h);
                 self.stats.largest_step = self.stats.largest_step.max(h);
@@ -455,13 +494,13 @@ impl Rkf45 {
         Ok(())
     }
 
-    /// The six Fehlberg stage derivatives k₀…k₅ of a step of size `h` from (`t`, `y`), into
-    /// `self.k` (one evaluation of `f` each).
-    fn stages<F>(&mut self, t: f64, y: &[f64], h: f64, f: &mut F)
+    /// The Fehlberg stage derivatives k_from…k₅ of a step of size `h` from (`t`, `y`), into
+    /// `self.k` (one evaluation of `f` each; k₀ = f(t, y) when `from` is 0).
+    fn stages<F>(&mut self, t: f64, y: &[f64], h: f64, f: &mut F, from: usize)
     where
         F: FnMut(f64, &[f64], &mut [f64]),
     {
-        for s in 0..6 {
+        for s in from..6 {
             for i in 0..y.len() {
                 let mut acc = 0.0;
                 for (j, a) in A[s].iter().enumerate().take(s) {
@@ -481,7 +520,8 @@ impl Rkf45 {
         F: FnMut(f64, &[f64], &mut [f64]),
     {
         let n = y.len();
-        self.stages(t, y, h, f);
+        self.stages(t, y, h, f, 0);
+        self.first_known = false;
         let mut lo = y.to_vec();
         let mut hi = y.to_vec();
         for i in 0..n {

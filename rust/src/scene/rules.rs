@@ -155,21 +155,12 @@ impl Scene {
             Err(BeltError::invalid(
                 field,
                 "\"stick_force\"",
-                "stick-force friction is solved for a fixed time step (the force that stops a contact within the step) and cannot run under solver.integrator = \"rkf45\"; use solver.integrator = \"central_difference\", with stick-force or creep-rate friction (model = \"creep\", Kubas eq. 12–19; RKF45 does not integrate the creep memory yet)",
+                "stick-force friction is solved for a fixed time step (the force that stops a contact within the step) and cannot run under solver.integrator = \"rkf45\"; use the creep-rate friction model (model = \"creep\", Kubas eq. 12–19: a friction law of the state, whose creep memory RKF45 integrates with the state), or solver.integrator = \"central_difference\"",
             ))
         };
         for (i, p) in self.pulleys.iter().enumerate() {
             if matches!(p.friction, FrictionModel::StickForce { .. }) && !p.friction.is_none() {
                 return stick(format!("pulleys[{i}].friction.model"));
-            }
-            if p.friction.is_creep() {
-                // The creep memory is advanced by the central-difference step with the
-                // stick limit of that step; the adaptive integrator does not carry it.
-                return Err(BeltError::invalid(
-                    format!("pulleys[{i}].friction.model"),
-                    "\"creep\"",
-                    "the creep friction model's memory is advanced per central-difference step (with that step's stick limit); RKF45 does not integrate it yet: use solver.integrator = \"central_difference\"",
-                ));
             }
             if let Some(d) = &p.drive {
                 // Their memory (PI integral, lagged torque, a coupled motor's speed) is
