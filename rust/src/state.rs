@@ -212,6 +212,19 @@ impl DofLayout {
         self
     }
 
+    /// The rigid degrees of freedom that drives, brakes, stops or takeups act on (the
+    /// takeups and pulleys, first in the order), and the free rotations after them (idlers
+    /// and belt bodies: inertia and torque only). The central-difference update moves the
+    /// free ones in tight loops of their own: on a long conveyor they are thousands.
+    pub fn driven(&self) -> &[Rigid] {
+        let free = self
+            .rigid
+            .iter()
+            .position(|d| matches!(d, Rigid::Idler(_) | Rigid::Body(_)))
+            .unwrap_or(self.rigid.len());
+        &self.rigid[..free]
+    }
+
     /// Number of generalized coordinates.
     pub fn len(&self) -> usize {
         2 * self.nodes + self.rigid.len()
