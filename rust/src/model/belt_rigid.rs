@@ -40,9 +40,12 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<(NodeBelt, R
     };
     let n = belt.nodes;
     let zeta = scene.belt.damping_ratio;
-    // A point (length 0) has no inertia; it is no rotational degree of freedom.
+    // An open belt's end point (length 0) is no rotational degree of freedom: nothing
+    // turns it (no lever, no torsional spring), so its torque is always zero. It gets a
+    // body's inertia all the same, so that an update over every body angle (0/I) stays 0.
+    let body = belt.element_length;
     let inertia: Vec<f64> = (belt.mass.iter().zip(&belt.rest_length))
-        .map(|(&m, &l)| crate::belt::rigid::link_inertia(m, l))
+        .map(|(&m, &l)| crate::belt::rigid::link_inertia(m, if l > 0.0 { l } else { body }))
         .collect();
     let torsional_damping = (0..n)
         .map(|e| match scene.belt.damping_time {
