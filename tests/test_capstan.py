@@ -68,7 +68,7 @@ def wrap_tensions(res: beltrs.Result) -> tuple[np.ndarray, np.ndarray]:
     return res.tension[:, on[0] - 1], res.tension[:, on[-1]]
 
 
-def onset(theta: float, friction: Friction) -> float:
+def onset(theta: float, friction: Friction, formulation: str = "node_kelvin_voigt") -> float:
     """The largest T_tight/T_slack before the belt slides, on the sheave held by a brake:
     the load hangs from the start (which runs up to the sheave's left side and wraps it
     clockwise by theta), the pull rises at the end."""
@@ -83,6 +83,7 @@ def onset(theta: float, friction: Friction) -> float:
         belt=Belt(
             axial_stiffness=EA,
             mass_per_length=RHO,
+            formulation=formulation,
             start=BeltEnd.hanging((-R, -SPAN), LOAD),
             end=BeltEnd.pulled(end, weight, force_rate=RATE),
         ),
@@ -100,7 +101,7 @@ def onset(theta: float, friction: Friction) -> float:
     return float(np.max((tight / slack)[held]))
 
 
-def sliding(theta: float, friction: Friction) -> float:
+def sliding(theta: float, friction: Friction, formulation: str = "node_kelvin_voigt") -> float:
     """T_tight/T_slack of the belt sliding over the sheave turning at 3 m/s: the start
     anchored, the end pulled by 20 N, gravity off; the sheave's surface runs towards the
     pulled end, so the anchored span is the tight one."""
@@ -115,6 +116,7 @@ def sliding(theta: float, friction: Friction) -> float:
         belt=Belt(
             axial_stiffness=EA,
             mass_per_length=RHO,
+            formulation=formulation,
             start=BeltEnd.anchor(at(a0, -SPAN)),
             end=BeltEnd.pulled(at(a1, SPAN), PULL),
         ),

@@ -1,6 +1,8 @@
 """Open belts (``Belt.start``/``Belt.end``): scene paths, elements and recording, bad input,
 checkpoints, and the hoist at default settings against the exact hanging rope
-(:func:`beltrs.analytic.hanging_rope`; docs/open-belts.md)."""
+(:func:`beltrs.analytic.hanging_rope`; docs/open-belts.md), with both belt formulations
+(the node belt; the rigid-body belt, whose N bodies lie between two end points: N + 2
+belt points and N + 1 joints)."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ from beltrs import Belt, BeltEnd, Pulley, Scene, Simulation
 from beltrs.analytic import hanging_rope
 
 G = 9.81
+FORMULATIONS = pytest.mark.parametrize("formulation", ["node_kelvin_voigt", "rigid_body"], ids=["node", "rigid"])
 
 
 def hoist(mass: float = 200.0, drop: float = 3.0, **belt: object) -> Scene:
@@ -30,10 +33,13 @@ def hoist(mass: float = 200.0, drop: float = 3.0, **belt: object) -> Scene:
     )
 
 
-def test_an_open_belt_has_one_element_fewer_than_nodes(tmp_path) -> None:
-    scene = hoist()
+@FORMULATIONS
+def test_an_open_belt_has_one_element_fewer_than_nodes(tmp_path, formulation: str) -> None:
+    scene = hoist(formulation=formulation)
     sim = Simulation(scene)
     assert sim.elements == sim.nodes - 1
+    # The elements (the rigid belt's joints) stand for the whole rope.
+    assert np.sum(sim.rest_length) == pytest.approx(sim.path_length, rel=1e-12)
     assert sim.rest_length.shape == (sim.elements,)
     assert "end_anchors" in sim.stages and "end_pulls" not in sim.stages
     x = sim.state()["node_position"]
@@ -50,6 +56,7 @@ def test_an_open_belt_has_one_element_fewer_than_nodes(tmp_path) -> None:
     text = (tmp_path / "hoist.toml").read_text()
     assert "[belt.start]" in text and 'hold = "mass"' in text
     assert beltrs.load_scene(tmp_path / "hoist.toml") == scene
+    assert f'formulation = "{formulation}"' in text or formulation == "node_kelvin_voigt"
 
 
 def test_the_closed_loop_is_unchanged() -> None:
@@ -78,8 +85,9 @@ def test_the_closed_loop_is_unchanged() -> None:
         ({"start": {"point": [-1.5, 0.25], "weight": 1.0}}, r"belt\.start\.weight.*unknown key"),
     ],
 )
-def test_bad_ends_are_scene_errors(change: dict, message: str) -> None:
-    data = hoist().to_dict()
+@FORMULATIONS
+def test_bad_ends_are_scene_errors(change: dict, message: str, formulation: str) -> None:
+    data = hoist(formulation=formulation).to_dict()
     data["belt"].update(change)
     with pytest.raises(beltrs.SceneError, match=message):
         Simulation(Scene.from_dict(data))
@@ -92,8 +100,9 @@ def test_idlers_and_loads_are_refused_on_an_open_belt() -> None:
         Simulation(scene)
 
 
-def test_an_open_belt_resumes_from_a_checkpoint(tmp_path) -> None:
-    a = Simulation(hoist())
+@FORMULATIONS
+def test_an_open_belt_resumes_from_a_checkpoint(tmp_path, formulation: str) -> None:
+    a = Simulation(hoist(formulation=formulation))
     a.stabilise()
     a.run(0.02)
     a.save_checkpoint(tmp_path / "h.ck")
@@ -103,9 +112,9 @@ def test_an_open_belt_resumes_from_a_checkpoint(tmp_path) -> None:
     assert ra.tension.shape[1] == a.elements
 
 
-@pytest.fixture(scope="module")
-def hung() -> Simulation:
-    sim = Simulation(hoist())
+@pytest.fixture(scope="module", params=["node_kelvin_voigt", "rigid_body"], ids=["node", "rigid"])
+def hung(request) -> Simulation:
+    sim = Simulation(hoist(formulation=request.param))
     assert sim.stabilise()["converged"]
     return sim
 
@@ -114,11 +123,13 @@ def test_hoist_static_tension_is_the_weight_below(hung: Simulation) -> None:
     """Along the hanging span the tension is (m + rho s0) g exactly, s0 the unstretched
     length below the element's middle: the end node carries the mass and half an element,
     each node below the element one element more (the span is straight and vertical). The
-    stabilised state is converged to 1e-7 of the largest tension, so 1e-5 is the bound of
-    the relaxation's residual, not a model error."""
+    rigid-body belt gives the same: its end point carries the mass and half a body, each
+    body one more, and joint e has E - e - 1 bodies below it. The stabilised state is
+    converged to 1e-7 of the largest tension, so 1e-5 is the bound of the relaxation's
+    residual, not a model error."""
     x = hung.state()["node_position"]
     t = hung.tensions()
-    l0 = hung.rest_length[0]
+    l0 = hung.rest_length[1]  # an element (node belt), a body (rigid belt)
     mid = 0.5 * (x[:-1] + x[1:])
     hanging = np.flatnonzero((mid[:, 0] > 0.2) & (mid[:, 1] < -0.3))
     assert len(hanging) > 5
@@ -126,17 +137,30 @@ def test_hoist_static_tension_is_the_weight_below(hung: Simulation) -> None:
     exact = (200.0 + 0.6 * s0) * G
     np.testing.assert_allclose(t[hanging], exact, rtol=1e-5)
     assert t[-1] == pytest.approx(200.0 * G + 0.6 * 0.5 * l0 * G, rel=1e-6)
-    # Over the frictionless sheave the tension of the continuum depends on the height
-    # alone (rho g per metre): at the anchor, 3.25 m above the load. The node belt meets it
-    # to the chord polygon's error: where the anchored span joins the wrap its node balances
-    # the span against the first chord, at up to half the element angle a (30 deg by
-    # default here), which moves the span's tension by up to 1/cos(a/2) - 1 = 3.4 %; it is
-    # 0.11 % here (where the fixed rope length puts that node).
+
+
+@FORMULATIONS
+def test_hoist_anchor_tension_over_the_sheave(formulation: str) -> None:
+    """Over the frictionless sheave the tension of the continuum depends on the height
+    alone (rho g per metre): at the anchor, 3.25 m above the load. The node belt meets it
+    to the chord polygon's error: where the anchored span joins the wrap its node balances
+    the span against the first chord, at up to half the element angle a (30 deg by
+    default here), which moves the span's tension by up to 1/cos(a/2) - 1 = 3.4 %; it is
+    0.11 % here (where the fixed rope length puts that node). The rigid-body belt's first
+    body on the rim takes the span's pull at its end, up to its whole angle from its
+    tangent: the anchored span read 4.0 % high with 30 deg bodies, 0.014 % with the
+    default 15 deg and 0.010 % with 7.5 deg (measured; the rigid belt's default body angle,
+    docs/open-belts.md)."""
+    sim = Simulation(hoist(formulation=formulation))
+    assert sim.stabilise()["converged"]
+    x = sim.state()["node_position"]
+    t = sim.tensions()
     y_load = x[-1, 1]
     assert t[0] == pytest.approx((200.0 + 0.6 * (x[0, 1] - y_load)) * G, rel=5e-3)
 
 
-def test_hoist_bounce_frequency_at_default_settings() -> None:
+@FORMULATIONS
+def test_hoist_bounce_frequency_at_default_settings(formulation: str) -> None:
     """A 10 % lighter load released from the loaded equilibrium bounces on the rope at the
     exact continuum frequency (beta tan beta = rho L / m, L the whole rope from the anchor,
     over the frictionless sheave, to the load: the rope slides over it as one axial
@@ -145,8 +169,8 @@ def test_hoist_bounce_frequency_at_default_settings() -> None:
     rope's), and the period is read from 8 zero crossings at 1/40 period resolution
     (interpolated). The rope-mass correction itself is 0.5 % here (Rayleigh's rho L/3 in
     m_eff), the effect of the load change on the static stretch of the rope 10 %."""
-    scene = hoist()
-    light = hoist(mass=180.0)
+    scene = hoist(formulation=formulation)
+    light = hoist(mass=180.0, formulation=formulation)
     s = Simulation(scene)
     assert s.stabilise()["converged"]
     s.set_scene(light)

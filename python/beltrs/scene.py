@@ -784,7 +784,9 @@ class Belt(_Table):
             of arc: the node-discrete Euler-Eytelwein ratio within 0.5 %
             (docs/belt-drives.md).
         max_element_angle: rad. Default pi/6 (30 degrees, thesis §6.1); at most pi/3. Used
-            only when ``elements`` is None.
+            only when ``elements`` is None. While at its default, the ``"rigid_body"``
+            formulation's bodies span at most half of it (15 degrees: their polygon round
+            a pulley holds a^2/12 more belt than the arc; docs/open-belts.md).
         tension_only: if True a slack element carries no compression. Default False.
         max_placement_strain: largest strain, dimensionless, > 0, at which the belt may be
             placed on its initial path, |path length / length - 1|; a belt stretched (or
@@ -799,8 +801,11 @@ class Belt(_Table):
             mass ``mass_per_length``*l, inertia m*l^2/12; spring-dampers
             c_x = EA/l, c_phi = EI/l, damped at ``damping_ratio`` of critical
             (b_x = 2 zeta sqrt(c_x m), b_phi = 2 zeta sqrt(c_phi I)); mass centres where
-            the node belt has its nodes. Not with ``tension_only`` or loads (refused), nor
-            with an open belt.
+            the node belt has its nodes. An open belt (``start``/``end``) of N bodies
+            has N + 2 belt points (its two end points, each joined to its body's outer end
+            by half a joint: stiffness and damping 2 c_x, 2 b_x) and N + 1 joints
+            (``Result.tension`` columns); docs/open-belts.md. Not with ``tension_only``
+            or loads (refused).
         pulley_contact: how the belt meets the pulleys: ``"nodes"`` (Hustrulid's nodal
             penalty contact, thesis eq. 4.70-4.75; the belt round a pulley is a chord
             polygon, with the chordal ripple of a chain on a sprocket on a held drum) or
@@ -811,7 +816,8 @@ class Belt(_Table):
             ``end`` together. Default None: a closed loop. An open belt takes no design
             start (``Scene.initial``).
         end: the last end of an open belt. Default None. An open belt of n elements has
-            n + 1 nodes; ``Result.tension`` then has n columns.
+            n + 1 nodes; ``Result.tension`` then has n columns (``"rigid_body"``: n bodies,
+            n + 2 belt points and n + 1 joints).
     """
 
     axial_stiffness: float

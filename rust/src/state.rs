@@ -204,9 +204,11 @@ impl DofLayout {
         DofLayout { nodes, rigid }
     }
 
-    /// This layout with the rotations of `bodies` rigid belt bodies appended.
-    pub fn with_bodies(mut self, bodies: usize) -> DofLayout {
-        self.rigid.extend((0..bodies).map(Rigid::Body));
+    /// This layout with the rotations of the rigid belt bodies `bodies` (belt point
+    /// indices) appended. An open rigid-body belt's end points are points, not bodies:
+    /// they have no rotation.
+    pub fn with_bodies(mut self, bodies: std::ops::Range<usize>) -> DofLayout {
+        self.rigid.extend(bodies.map(Rigid::Body));
         self
     }
 

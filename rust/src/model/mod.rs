@@ -17,7 +17,7 @@ mod pulleys;
 mod stable_step;
 mod stages;
 
-pub use belt::FRICTION_RATIO_ERROR;
+pub use belt::{FRICTION_RATIO_ERROR, RIGID_BODY_ANGLE_FACTOR};
 pub use design::InitialMotion;
 pub use idlers::IdlerModel;
 pub use open::{EndModel, OpenEnds};
@@ -46,6 +46,8 @@ pub struct Model {
     /// The scene this model was compiled from.
     pub scene: Scene,
     /// Number of nodes (= number of elements for a closed loop; one more for an open belt).
+    /// The rigid-body belt's nodes are its bodies' mass centres, and an open one's two end
+    /// points besides (`belt_rigid`).
     pub nodes: usize,
     /// Number of belt elements: `nodes` for a closed loop, `nodes − 1` for an open belt
     /// (whose arrays keep a last entry that is no element).
@@ -156,13 +158,6 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         if scene.belt.is_open() {
-            if scene.belt.formulation == Formulation::RigidBody {
-                return Err(BeltError::invalid(
-                    "belt.formulation",
-                    "rigid_body",
-                    "an open belt (belt.start/belt.end) runs on the node belt (node_kelvin_voigt); the rigid-body formulation is for a closed loop",
-                ));
-            }
             if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
                 return Err(BeltError::invalid(
                     "belt.pulley_contact",
@@ -235,7 +230,7 @@ impl Model {
             .iter()
             .map(|d| d.radius)
             .chain(pulleys.iter().map(|p| p.radius))
-            .chain(belt.rest_length.iter().copied())
+            .chain(belt.rest_length.iter().copied().filter(|&l| l > 0.0))
             .fold(f64::INFINITY, f64::min);
         let mut model = Model {
             scene: scene.clone(),
@@ -257,8 +252,14 @@ impl Model {
             wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
             formulation,
             gravity: scene.gravity,
-            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len())
-                .with_bodies(if rigid.is_some() { belt.nodes } else { 0 }),
+            dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()).with_bodies(
+                match (&rigid, belt.ends) {
+                    (None, _) => 0..0,
+                    (Some(_), None) => 0..belt.nodes,
+                    // An open belt's end points are points: no rotation.
+                    (Some(_), Some(_)) => 1..belt.nodes - 1,
+                },
+            ),
             pulleys,
             idlers,
             loads,
@@ -323,6 +324,30 @@ impl Model {
     /// True if the compiled model runs `stage`.
     pub fn has_stage(&self, stage: Stage) -> bool {
         self.stages.contains(&stage)
+    }
+
+    /// The unstretched belt length each element stands for, m, one per element: the node
+    /// belt's element rest lengths; for the rigid-body belt, half of each of the two belt
+    /// points' lengths that a joint joins (the body length l between two bodies, l/2 from
+    /// an open belt's end point to its body). They add up to the belt's length.
+    pub fn element_rest_length(&self) -> Vec<f64> {
+        if !self.is_rigid() {
+            return self.rest_length[..self.elements].to_vec();
+        }
+        let n = self.nodes;
+        (0..self.elements)
+            .map(|e| 0.5 * (self.rest_length[e] + self.rest_length[(e + 1) % n]))
+            .collect()
+    }
+
+    /// The length of an element (node belt) or a body (rigid-body belt), m: the first
+    /// positive rest length (an open rigid-body belt's end points have none).
+    pub fn element_length(&self) -> f64 {
+        self.rest_length
+            .iter()
+            .copied()
+            .find(|&l| l > 0.0)
+            .unwrap_or(0.0)
     }
 
     /// Total belt mass, kg.

@@ -1,6 +1,7 @@
 //! Open belts (`belt.start` and `belt.end`): the path from the start point round the
-//! pulleys in order to the end point, the placement of the nodes on it with equal chords,
-//! and the compiled ends (anchors, pulls, hanging masses).
+//! pulleys in order to the end point, the placement of the belt points on it (the node
+//! belt's nodes with equal chords; the rigid-body belt's end points and mass centres,
+//! `super::belt_rigid`), and the compiled ends (anchors, pulls, hanging masses).
 //!
 //! The node belt of an open belt keeps the closed loop's arrays: n nodes and n entries
 //! per element, the last (node n−1 back to node 0) being no element at all (the axial
@@ -195,21 +196,31 @@ fn next_at_chord(path: &BeltPath, s0: f64, chord: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// Place `n` nodes on the open path with `n − 1` equal chords, the first at the start
-/// point and the last at the end point. Returns the positions.
-pub(super) fn place(path: &BeltPath, n: usize) -> BeltResult<Vec<V2>> {
-    let elements = (n - 1) as f64;
+/// Place `n` points on the open path, the first at the start point and the last at the
+/// end point, with equal chords between them, or (`half_ends`) with the first and the
+/// last chord half as long as the others (the rigid-body belt: its end points, then the
+/// bodies' mass centres one body length apart, the first and last half a body from the
+/// ends). Returns the positions.
+pub(super) fn place(path: &BeltPath, n: usize, half_ends: bool) -> BeltResult<Vec<V2>> {
+    let factor = |k: usize| {
+        if half_ends && (k == 0 || k == n - 2) {
+            0.5
+        } else {
+            1.0
+        }
+    };
     let walk = |chord: f64| -> BeltResult<f64> {
         let mut s = 0.0;
-        for _ in 0..n - 1 {
-            s = next_at_chord(path, s, chord);
+        for k in 0..n - 1 {
+            s = next_at_chord(path, s, chord * factor(k));
             crate::interrupt::check(64)?;
         }
         Ok(s - path.length)
     };
-    // The walk of n − 1 arcs' worth of chords reaches the end or beyond; 0.9 of it falls
+    // The walk of whole chords' worth of arcs reaches the end or beyond; 0.9 of it falls
     // short (chords are at least 0.955 of their arcs for elements of at most 60°).
-    let arc = path.length / elements;
+    let chords = (0..n - 1).map(factor).sum::<f64>();
+    let arc = path.length / chords;
     let (mut lo, mut hi) = (0.9 * arc, arc);
     let (mut flo, mut fhi) = (walk(lo)?, walk(hi)?);
     // Regula falsi (Illinois) on the nearly linear walk, down to rounding.
@@ -235,18 +246,18 @@ pub(super) fn place(path: &BeltPath, n: usize) -> BeltResult<Vec<V2>> {
     }
     let mut nodes = Vec::with_capacity(n);
     let mut s = 0.0;
-    for _ in 0..n - 1 {
+    for k in 0..n - 1 {
         nodes.push(point(path, s));
-        s = next_at_chord(path, s, chord);
+        s = next_at_chord(path, s, chord * factor(k));
     }
-    // The last node at the end point itself (the walk lands there to rounding).
+    // The last point at the end point itself (the walk lands there to rounding).
     nodes.push(point(path, path.length));
     Ok(nodes)
 }
 
 /// The compiled ends: anchors at their points, pulls along the initial end spans (away
-/// from the pulleys), masses as given. `first`/`last` are the first two and the last two
-/// node positions (for the span directions).
+/// from the pulleys), masses as given. `nodes` are the belt points: the first two and the
+/// last two give the span directions.
 pub(super) fn ends(scene: &Scene, nodes: &[V2]) -> OpenEnds {
     let n = nodes.len();
     let b = &scene.belt;

@@ -102,7 +102,7 @@ impl Model {
             let (contact_stiffness, contact_damping) = p.contact_bound(contact_scale);
             if let (Some(t), true) = (&p.takeup, contact_stiffness > 0.0) {
                 let wrap = self.path.wrap_angles[j];
-                let nodes_on_wrap = (wrap * p.radius / self.rest_length[0]).ceil() + 2.0;
+                let nodes_on_wrap = (wrap * p.radius / self.element_length()).ceil() + 2.0;
                 let k = nodes_on_wrap * contact_stiffness;
                 takeup_stiffness_bound[j] = k;
                 let omega = (k / t.moving_mass).sqrt();
@@ -189,10 +189,49 @@ impl Model {
 /// translational row is 4× the node row. A torsional SDE c_φ on two bodies of inertia I
 /// adds 2c_φ/I per joint, 24·c_φ/l² per joint as a stiffness on the translation (×m).
 fn rigid_body_bounds(m: &Model, i: usize, k_ax: f64, c_ax: f64) -> (f64, f64, f64) {
+    if m.ends.is_some() {
+        return open_chain_bounds(m, i);
+    }
     let n = m.nodes;
     let prev = (i + n - 1) % n;
     let l = m.rest_length[i];
     let k_tor = 24.0 * (m.bending_stiffness[prev] + m.bending_stiffness[i]) / (l * l);
     let c_tor = 24.0 * (m.torsional_damping[prev] + m.torsional_damping[i]) / (l * l);
     (4.0 * k_ax, 4.0 * c_ax + c_tor, k_tor)
+}
+
+/// The open rigid-body chain's bounds at belt point `i` (a body or an end point), as
+/// stiffness and damping on its translation (translational, damping, torsional), joint by
+/// joint: a translational SDE of stiffness k between points a and b has the largest
+/// mass-weighted eigenvalue k·(αₐ + α_b), α = 1/m + (l/2)²/I, which is 4/m for a thin link
+/// (the closed chain's 8k/m for two equal bodies) and 1/m for a point; a torsional SDE
+/// c_φ(1/Iₐ + 1/I_b). A point's bound is the sum over its joints (at most two), times its
+/// mass; for the closed chain this is [`rigid_body_bounds`]'s. The end joints are stiffer
+/// (2c_x) and the end points lighter (ρl/2 without a hanging mass) than the rest, so the
+/// ends may set the step (by at most about 10 % for a pulled end).
+fn open_chain_bounds(m: &Model, i: usize) -> (f64, f64, f64) {
+    let alpha = |j: usize| {
+        let l = m.rest_length[j];
+        if l > 0.0 {
+            1.0 / m.mass[j] + 0.25 * l * l / m.body_inertia[j]
+        } else {
+            1.0 / m.mass[j]
+        }
+    };
+    let (mut k, mut c, mut tor) = (0.0, 0.0, 0.0);
+    for e in [i.wrapping_sub(1), i] {
+        if e >= m.elements {
+            continue;
+        }
+        let a = alpha(e) + alpha(e + 1);
+        k += m.axial_stiffness[e] * a;
+        c += m.axial_damping[e] * a;
+        if m.bending_stiffness[e] > 0.0 {
+            let inv = 1.0 / m.body_inertia[e] + 1.0 / m.body_inertia[e + 1];
+            tor += m.bending_stiffness[e] * inv;
+            c += m.torsional_damping[e] * inv;
+        }
+    }
+    let mass = m.mass[i];
+    (k * mass, c * mass, tor * mass)
 }

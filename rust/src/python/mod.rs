@@ -170,11 +170,11 @@ impl PySimulation {
         self.lock(py).model.path.wrap_angles.clone()
     }
 
-    /// Element rest lengths, m.
+    /// Element rest lengths, m (the rigid-body belt: the belt length each joint stands for).
     #[getter]
     fn rest_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let sim = self.lock(py);
-        PyArray1::from_slice(py, &sim.model.rest_length[..sim.model.elements])
+        PyArray1::from_vec(py, sim.model.element_rest_length())
     }
 
     /// Node masses, kg.

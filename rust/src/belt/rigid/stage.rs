@@ -34,11 +34,25 @@ fn params(m: &Model, e: usize, damped: bool) -> SdeParams {
     }
 }
 
-/// SDE forces and torques of the closed chain and the body weights −m·g ŷ. **Writes**
+/// The unit axis of a body from its half-length vector `h` and length `l`; zero for an
+/// open belt's end point (length 0).
+#[inline]
+fn unit_axis(h: V2, l: f64) -> V2 {
+    if l > 0.0 {
+        h / l
+    } else {
+        V2::zeros()
+    }
+}
+
+/// SDE forces and torques of the chain and the body weights −m·g ŷ. **Writes**
 /// every body force and torque (the first stage that touches them) and each joint's
 /// tension: the SDE force along the mean axis of its two bodies, N, negative when the
 /// ends overlap (the spring then pushes the bodies apart). The relaxation runs the
-/// dampers off ([`crate::pipeline::Effects::damping`]).
+/// dampers off ([`crate::pipeline::Effects::damping`]). A closed chain has a joint per
+/// body (the last joins body n−1 to body 0); an open one (`crate::model`'s
+/// `belt_rigid::open_chain`) joins its end points (length 0: their half-length vector is
+/// zero, so an end joint acts at the point itself) to the end bodies, n − 1 joints.
 pub fn chain(cx: &mut StageContext<'_>) {
     let (m, s, sc) = (cx.model, &*cx.state, &mut *cx.scratch);
     let n = m.nodes;
@@ -52,7 +66,7 @@ pub fn chain(cx: &mut StageContext<'_>) {
     let first = link(m, s, 0);
     let first_half = first.half_vector();
     let (mut left, mut hl) = (first, first_half);
-    for e in 0..n {
+    for e in 0..m.elements {
         let r = if e + 1 == n { 0 } else { e + 1 };
         let (right, hr) = if r == 0 {
             (first, first_half)
@@ -65,7 +79,7 @@ pub fn chain(cx: &mut StageContext<'_>) {
         sc.force[e] -= j.force_on_right;
         sc.body_torque[e] += j.torque_on_left;
         sc.body_torque[r] += j.torque_on_right;
-        let axis = hl / left.length + hr / right.length;
+        let axis = unit_axis(hl, left.length) + unit_axis(hr, right.length);
         sc.tension[e] = if j.direction.dot(&axis) < 0.0 {
             -j.tension
         } else {
@@ -79,7 +93,7 @@ pub fn chain(cx: &mut StageContext<'_>) {
 pub fn chain_energy(m: &Model, s: &State) -> (f64, f64) {
     let n = m.nodes;
     let (mut strain, mut bending) = (0.0, 0.0);
-    for e in 0..n {
+    for e in 0..m.elements {
         let (l, r) = (link(m, s, e), link(m, s, (e + 1) % n));
         let p = params(m, e, false);
         let elastic = SdeParams {
