@@ -1,0 +1,111 @@
+"""Where the steady drive-torque ripple lives (issue 12, "smooth drives"): the 300 m builder
+conveyor of tests/conveyor_300.py started from its running design state (no ramp), the head
+drive's torque and the belt's friction torque on the head drum sampled every 0.5 ms, for one
+model change at a time. Prints one JSON line per variant: mean torque, ripple above 2 Hz
+(max |tau - tau_2Hz| / |mean|, the test's figure), its rms, and the share of the spectrum's
+energy in bands (Hz) with the five strongest lines. A script, not a test.
+
+    python benches/ripple_drive.py base mu_equal wrap tau1e4 no_idler_damp
+    python benches/ripple_drive.py base --pi --motor-inertia 1.5   # PI speed loop, motor inertia
+    python benches/ripple_drive.py base --element 0.1045           # half the element length
+
+Variants: ``base`` (builder defaults: nodal contact, ideal speed-held head drum, lagging
+0.4/0.35 stick-force, element damping 5 % of critical), ``mu_equal`` (lagging 0.35/0.35: no
+stick-slip between mu_s and mu_k), ``creep`` (creep friction on the drums), ``wrap``
+(``belt.pulley_contact = "wrap"``), ``tau1e4`` / ``tau3e4`` / ``tau1e3`` (Voigt
+``damping_time`` instead of the element damping ratio), ``no_idler_damp`` / ``idler_damp4``
+(roll contact damping 0 / 4x), ``no_gravity``, ``no_resistance`` (DIN f = 0 on the rolls).
+"""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import replace
+import json
+import time
+
+import numpy as np
+
+import beltrs
+from beltrs.analysis import low_pass
+from beltrs.conveyor import Conveyor, DriveSpec
+
+BANDS = [(0, 2), (2, 8), (8, 15), (15, 30), (30, 80), (80, 200), (200, float("inf"))]
+
+
+def figures(t: np.ndarray, x: np.ndarray, window: float) -> dict:
+    """Ripple figures of the signal ``x`` over the last ``window`` s."""
+    dt = float(np.median(np.diff(t)))
+    low = low_pass(x, dt, 2.0)
+    w = t >= t[-1] - window
+    mean = float(x[w].mean())
+    xs = x[w] - mean
+    spec = np.abs(np.fft.rfft(xs * np.hanning(len(xs)))) ** 2
+    f = np.fft.rfftfreq(len(xs), dt)
+    total = spec.sum()
+    return {
+        "mean": round(mean, 1),
+        "rms_abs": round(float(np.std((x - low)[w])), 1),
+        "ripple": round(float(np.abs(x - low)[w].max() / abs(mean)), 3),
+        "rms": round(float(np.std((x - low)[w]) / abs(mean)), 3),
+        "bands": {f"{a:g}-{b:g}": round(float(spec[(f >= a) & (f < b)].sum() / total), 3) for a, b in BANDS},
+        "lines_hz": [round(float(f[k]), 1) for k in np.argsort(spec)[-5:][::-1]],
+    }
+
+
+def belt(s, **kw):
+    return replace(s, belt=replace(s.belt, **kw))
+
+
+def drums(s, **kw):
+    return replace(s, pulleys=[replace(p, **kw) for p in s.pulleys])
+
+
+VARIANTS = {
+    "base": lambda s: s,
+    "wrap": lambda s: belt(s, pulley_contact="wrap"),
+    "mu_equal": lambda s: drums(s, friction=beltrs.Friction(static=0.35, kinetic=0.35)),
+    "creep": lambda s: drums(s, friction=beltrs.Friction(static=0.4, kinetic=0.35, model="creep")),
+    "tau1e4": lambda s: belt(s, damping_ratio=0.0, damping_time=1e-4),
+    "tau3e4": lambda s: belt(s, damping_ratio=0.0, damping_time=3e-4),
+    "tau1e3": lambda s: belt(s, damping_ratio=0.0, damping_time=1e-3),
+    "no_idler_damp": lambda s: replace(s, idlers=[replace(i, contact_damping=0.0) for i in s.idlers]),
+    "idler_damp4": lambda s: replace(s, idlers=[replace(i, contact_damping=4 * i.contact_damping) for i in s.idlers]),
+    "no_gravity": lambda s: replace(s, gravity=0.0),
+    "no_resistance": lambda s: replace(s, idlers=[replace(i, resistance=0.0) for i in s.idlers]),
+}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("variants", nargs="+", choices=sorted(VARIANTS))
+    ap.add_argument("--duration", type=float, default=2.0, help="s of running")
+    ap.add_argument("--window", type=float, default=1.0, help="last s analysed")
+    ap.add_argument("--interval", type=float, default=0.0005, help="sample interval, s")
+    ap.add_argument("--length", type=float, default=300.0, help="m")
+    ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
+    ap.add_argument("--pi", action="store_true", help="PI speed controller (default gains) on the head drive")
+    ap.add_argument("--motor-inertia", type=float, default=0.0, help="kg*m^2 at the motor shaft (1500 rpm)")
+    args = ap.parse_args(argv)
+    kw = {} if args.element is None else {"element_length": args.element}
+    drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0),
+                      inertia=args.motor_inertia, controller=beltrs.SpeedController() if args.pi else None)
+    for name in args.variants:
+        c = Conveyor(profile=[(0.0, 0.0), (args.length, 0.0)], belt="ST1250", capacity=500.0, speed=2.0,
+                     start="running", drives=[drive], **kw)
+        sim = beltrs.Simulation(VARIANTS[name](c.scene()))
+        wall = time.perf_counter()
+        res = sim.run(args.duration, record_interval=args.interval, tension=False, node_position=False,
+                      node_velocity=False, progress=False)
+        wall = time.perf_counter() - wall
+        j = res.pulley_names.index("head")
+        out = {"variant": name, "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
+               "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
+               "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
+               "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}
+        print(json.dumps(out), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
