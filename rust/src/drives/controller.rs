@@ -27,7 +27,8 @@
 use crate::error::{BeltError, BeltResult};
 use crate::model::{IdlerModel, Model, PulleyModel};
 use crate::pipeline::{Scratch, StageContext};
-use crate::scene::{check_finite, Scene};
+use crate::scene::{check_finite, DriveSpec, Scene};
+use crate::start_curve::StartCurve;
 use crate::state::State;
 use serde::{Deserialize, Serialize};
 
@@ -250,6 +251,27 @@ pub struct ControlOutput {
     pub active: bool,
 }
 
+/// A pulley under a PI speed controller: index `j`, its model, controller, drive and the
+/// drive's start curve (the reference speed).
+struct Controlled<'a> {
+    j: usize,
+    p: &'a PulleyModel,
+    c: &'a ControlModel,
+    d: &'a DriveSpec,
+    curve: &'a StartCurve,
+}
+
+/// The pulleys of `m` under a PI speed controller with a start curve, in pulley order: what
+/// [`speed_control`], [`advance_all`] and [`prime`] each walk over (each treats an unpowered
+/// drive its own way: zero output, no advance, no priming).
+fn controlled(m: &Model) -> impl Iterator<Item = Controlled<'_>> {
+    m.pulleys.iter().enumerate().filter_map(|(j, p)| {
+        let (c, d) = (p.control.as_ref()?, p.drive.as_ref()?);
+        let curve = d.start_curve.as_ref()?;
+        Some(Controlled { j, p, c, d, curve })
+    })
+}
+
 /// The `speed_control` stage: the PI controllers' torques, then the torque followers'
 /// (`super::sharing`). Off in the static relaxation with the other drives.
 pub fn speed_control(cx: &mut StageContext<'_>) {
@@ -259,13 +281,7 @@ pub fn speed_control(cx: &mut StageContext<'_>) {
         return;
     }
     let reference_time = s.time - 0.5 * m.dt;
-    for (j, p) in m.pulleys.iter().enumerate() {
-        let (Some(c), Some(d)) = (&p.control, &p.drive) else {
-            continue;
-        };
-        let Some(curve) = &d.start_curve else {
-            continue;
-        };
+    for Controlled { j, p, c, d, curve } in controlled(m) {
         if !d.powered(s.time) {
             // Power failure (`power_off`): no torque, and the controller stops integrating.
             sc.control[j] = ControlOutput::default();
@@ -290,13 +306,10 @@ pub fn speed_control(cx: &mut StageContext<'_>) {
 /// whose stage ran with drives on (the integrator calls this when the model has any).
 pub fn advance_all(m: &Model, s: &mut State, sc: &Scratch, drift: f64) {
     let time = s.time + 0.5 * drift;
-    for (j, p) in m.pulleys.iter().enumerate() {
-        let (Some(c), Some(d)) = (&p.control, &p.drive) else {
+    for Controlled { j, p, c, curve, .. } in controlled(m) {
+        if !sc.control[j].active {
             continue;
-        };
-        let (Some(curve), true) = (&d.start_curve, sc.control[j].active) else {
-            continue;
-        };
+        }
         let omega_ref = curve.speed_at(time) / p.radius;
         advance(
             c,
@@ -335,13 +348,7 @@ pub fn advance(
 /// holds its pulley (and its followers' pulleys) in the state `s`: `holding[j]` is pulley
 /// j's holding torque, N·m (`super::prime`, which explains the choice).
 pub fn prime(m: &Model, s: &mut State, holding: &[f64]) {
-    for (j, p) in m.pulleys.iter().enumerate() {
-        let (Some(c), Some(d)) = (&p.control, &p.drive) else {
-            continue;
-        };
-        let Some(curve) = &d.start_curve else {
-            continue;
-        };
+    for Controlled { j, p, c, d, curve } in controlled(m) {
         if !d.powered(s.time) {
             continue;
         }
