@@ -971,7 +971,8 @@ class Initial(_Table):
             the weight of belt and material at the design tension (the discrete form of
             q*x*(a - x)/(2*T) between the rolls, each roll pressed by the span it carries;
             ``docs/design-start.md``). False: straight from roll to roll (the spans then
-            sink into their sag at the start of the run). Default True.
+            sink into their sag at the start of the run). Default False (opt-in for now;
+            ``docs/design-start.md`` says why).
     """
 
     tension: tuple[float, ...]

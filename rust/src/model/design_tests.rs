@@ -155,6 +155,7 @@ fn sag_placement_hangs_each_span_in_its_parabola() {
     let t = 5e3;
     let init = InitialState {
         tension: vec![t],
+        sag: true,
         ..Default::default()
     };
     let d = place(&scene, &init, &path).unwrap();
@@ -236,6 +237,7 @@ fn sag_placement_presses_each_roll_with_its_span_load() {
     let path = BeltPath::from_pulleys(&scene.pulleys).unwrap();
     let init = InitialState {
         tension: vec![5e3],
+        sag: true,
         ..Default::default()
     };
     let d = place(&scene, &init, &path).unwrap();
