@@ -285,7 +285,10 @@ fn a_rigid_body_gaining_material_keeps_its_momenta_and_turns_with_its_inertia() 
     for i in 0..model.nodes {
         let l = model.rest_length[i];
         let expected = node_mass[i] * l * l / 12.0;
-        assert!((inertia[i] - expected).abs() <= 1e-12 * expected, "body {i}");
+        assert!(
+            (inertia[i] - expected).abs() <= 1e-12 * expected,
+            "body {i}"
+        );
     }
     let n = model.nodes;
     let x1: Vec<V2> = (0..n)
@@ -317,7 +320,10 @@ fn a_rigid_body_gaining_material_keeps_its_momenta_and_turns_with_its_inertia() 
     for i in 0..n {
         let l = model.rest_length[i];
         let expected = node_mass[i] * l * l / 12.0;
-        assert!((inertia[i] - expected).abs() <= 1e-12 * expected, "body {i}");
+        assert!(
+            (inertia[i] - expected).abs() <= 1e-12 * expected,
+            "body {i}"
+        );
         if node_mass[i] > before[i] {
             grew += 1;
             let (h0, h1) = (inertia0[i] * spin0[i], inertia[i] * spin[i]);
