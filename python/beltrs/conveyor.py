@@ -405,6 +405,13 @@ class Conveyor:
             ``speed``, the drives' start curves already ended). Either way the belt is
             placed along the profile, stretched to those tensions, with the takeup where
             the scene puts it: no relaxation.
+        formulation: the belt model (:attr:`beltrs.Belt.formulation`):
+            ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
+            (Kubas's and Guo & Wang's rigid bodies, the same element length, mass, EA, EI).
+            The rigid-body belt has no design-state placement yet: with ``start="rest"``
+            its scene starts from the belt placed on the pulleys' path and relaxed to the
+            standstill state (``recording.stabilise``, ``Simulation.stabilise``);
+            ``start="running"`` is refused.
     """
 
     profile: Sequence[Sequence[float]] = ((0.0, 0.0), (100.0, 0.0))
@@ -430,6 +437,7 @@ class Conveyor:
     damping_ratio: float = 0.05
     gravity: float = 9.81
     start: str = "rest"
+    formulation: str = "node_kelvin_voigt"
 
     # --- derived quantities -------------------------------------------------------------
     @property
@@ -567,6 +575,15 @@ class Conveyor:
         if self.start not in START_KINDS:
             raise SceneError(f"start = {self.start!r}: must be one of {', '.join(map(repr, START_KINDS))} (the "
                              "design state the scene starts from)")
+        from .scenes import FORMULATIONS
+
+        if self.formulation not in FORMULATIONS:
+            raise SceneError(f"formulation = {self.formulation!r}: must be one of "
+                             f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
+        if self.formulation == "rigid_body" and self.start != "rest":
+            raise SceneError(f"start = {self.start!r}: a running start needs the design-state placement, not "
+                             "available with formulation = 'rigid_body' (a rigid body's joint stretch on a drum "
+                             "is not its chord's); use start='rest' (relaxed to standstill) or the node formulation")
         if le > self.carry.pitch / 2:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
@@ -761,7 +778,9 @@ class Conveyor:
         path = 2 * prof.length + 2 * math.pi * r  # near enough for the element count
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
-                    elements=elements if elements is not None else math.ceil(path / le))
+                    elements=elements if elements is not None else math.ceil(path / le),
+                    formulation=self.formulation)
+        rigid = self.formulation == "rigid_body"
         longest = max((self._curve(d).end for d in self.drives), default=0.0)
         if duration is None:
             duration = 5.0 if running else longest + 5.0
@@ -772,8 +791,8 @@ class Conveyor:
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
                      recording=Recording(duration=duration, interval=0.05, channels=("tension", "node_position"),
-                                         stabilise=False),
-                     initial=self.initial(method))
+                                         stabilise=rigid),
+                     initial=None if rigid else self.initial(method))
 
     def design_path(self) -> list[tuple[float, float, float]]:
         """The belt's path as corners (x, y, radius), m, in the engine's node order

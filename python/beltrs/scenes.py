@@ -37,6 +37,9 @@ __all__ = [
     "kubas_case_k",
 ]
 
+#: The belt formulations (:attr:`beltrs.Belt.formulation`).
+FORMULATIONS = ("node_kelvin_voigt", "rigid_body")
+
 
 def hustrulid_loop(
     elements: int = 89,
@@ -309,6 +312,7 @@ def guo_wang_conveyor(
     takeup_tension: float = GUO_WANG["takeup_tension"],
     time_step_fraction: float = 0.5,
     start: Optional[str] = None,
+    formulation: str = "node_kelvin_voigt",
 ) -> Scene:
     """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (Guo & Wang 2020,
     Table 1; docs/reference-cases.md), started by a speed-controlled drive along ``start_curve``.
@@ -363,8 +367,20 @@ def guo_wang_conveyor(
             2 m/s, the start curve already ended) or None (default: the belt placed
             unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
             run).
+        formulation: the belt model (:attr:`beltrs.Belt.formulation`):
+            ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
+            (Guo & Wang's own rigid finite elements: bodies of the same length, mass
+            and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt starts
+            from the relaxed placement only (``start=None``).
     """
     p = GUO_WANG
+    if formulation not in FORMULATIONS:
+        raise SceneError(f"formulation = {formulation!r}: must be one of "
+                         f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
+    if formulation == "rigid_body" and start is not None:
+        raise SceneError(f"start = {start!r}: the design-state start is not available with formulation = "
+                         "'rigid_body' (a rigid body's joint stretch on a drum is not its chord's); use "
+                         "start=None and Simulation.stabilise")
     if start_curve is None:
         start_curve = StartCurve(shape="harrison", speed=p["speed"], ramp=10.0)
     if start_curve.speed > 0:  # the carry strand moves towards the head: clockwise drive
@@ -397,6 +413,7 @@ def guo_wang_conveyor(
         bending_stiffness=20.0,
         damping_ratio=0.05,
         elements=elements if elements is not None else math.ceil(path / element_length),
+        formulation=formulation,
     )
     loads = [Load(mass_per_length=material, start=(5.0, r), end=(length, r))] if material > 0 else []
     initial = None

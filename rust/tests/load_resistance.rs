@@ -243,6 +243,7 @@ fn a_node_gaining_material_keeps_its_momentum_and_one_losing_it_its_velocity() {
         &mut MassArrays {
             node_mass: &mut node_mass,
             inertia: Some((&mut mass, &mut inv_mass)),
+            bodies: None,
         },
     );
     let (mut grew, mut shrank) = (0, 0);
@@ -263,6 +264,74 @@ fn a_node_gaining_material_keeps_its_momentum_and_one_losing_it_its_velocity() {
         }
         assert_eq!(mass[i], node_mass[i]);
         assert_eq!(inv_mass[i], 1.0 / node_mass[i]);
+    }
+    assert!(grew >= 1 && shrank >= 1, "grew {grew}, shrank {shrank}");
+}
+
+#[test]
+fn a_rigid_body_gaining_material_keeps_its_momenta_and_turns_with_its_inertia() {
+    let mut scene = conveyor(80.0, 0.0, 0.0);
+    scene.belt.formulation = beltrs::scene::Formulation::RigidBody;
+    let model = Model::compile(&scene).unwrap();
+    assert!(model.is_rigid() && model.has_stage(Stage::Loads));
+    let belt = model.load_belt();
+    let x0 = model.initial_positions.clone();
+    let mut edges = loads::initial_edges(&model.loads, &x0, belt);
+    let mut node_mass = loads::node_masses(&model.mass, &model.loads, &edges, belt);
+    let mut mass = node_mass.clone();
+    let mut inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
+    // The physical inertia at the start: m·l²/12 of each body with its material.
+    let mut inertia = beltrs::integrate::Inertia::physical(&model, &node_mass).body_inertia;
+    for i in 0..model.nodes {
+        let l = model.rest_length[i];
+        let expected = node_mass[i] * l * l / 12.0;
+        assert!(
+            (inertia[i] - expected).abs() <= 1e-12 * expected,
+            "body {i}"
+        );
+    }
+    let n = model.nodes;
+    let x1: Vec<V2> = (0..n)
+        .map(|i| x0[i] + (x0[(i + 1) % n] - x0[i]) * 0.3)
+        .collect();
+    let mut v = vec![V2::new(1.0, -0.5); n];
+    let spin0: Vec<f64> = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
+    let mut spin = spin0.clone();
+    let before = node_mass.clone();
+    let inertia0 = inertia.clone();
+    loads::update(
+        &model.loads,
+        &model.mass,
+        belt,
+        &x1,
+        &mut v,
+        &mut edges,
+        &mut MassArrays {
+            node_mass: &mut node_mass,
+            inertia: Some((&mut mass, &mut inv_mass)),
+            bodies: Some(loads::Bodies {
+                belt_inertia: &model.body_inertia,
+                inertia: &mut inertia,
+                spin: &mut spin,
+            }),
+        },
+    );
+    let (mut grew, mut shrank) = (0, 0);
+    for i in 0..n {
+        let l = model.rest_length[i];
+        let expected = node_mass[i] * l * l / 12.0;
+        assert!(
+            (inertia[i] - expected).abs() <= 1e-12 * expected,
+            "body {i}"
+        );
+        if node_mass[i] > before[i] {
+            grew += 1;
+            let (h0, h1) = (inertia0[i] * spin0[i], inertia[i] * spin[i]);
+            assert!((h1 - h0).abs() < 1e-13 * h0.abs(), "body {i}: {h0} -> {h1}");
+        } else {
+            shrank += usize::from(node_mass[i] < before[i]);
+            assert_eq!(spin[i], spin0[i], "body {i}");
+        }
     }
     assert!(grew >= 1 && shrank >= 1, "grew {grew}, shrank {shrank}");
 }

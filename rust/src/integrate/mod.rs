@@ -93,7 +93,12 @@ impl Inertia {
                 .iter()
                 .map(|p| p.takeup.as_ref().map_or(f64::INFINITY, |t| t.moving_mass))
                 .collect(),
-            body_inertia: model.body_inertia.clone(),
+            // A body carrying material turns with its inertia (`crate::loads::Bodies`).
+            body_inertia: (model.body_inertia.iter().enumerate())
+                .map(|(i, &inertia)| {
+                    crate::loads::body_inertia(inertia, model.mass[i], node_mass[i])
+                })
+                .collect(),
             physical: true,
         }
     }

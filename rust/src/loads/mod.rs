@@ -349,6 +349,30 @@ pub struct MassArrays<'a> {
     /// The integrator's masses and inverses, when they are the physical ones (dynamics);
     /// `None` in the static relaxation (fictitious masses: only the weights change).
     pub inertia: Option<(&'a mut [f64], &'a mut [f64])>,
+    /// The rigid-body belt's rotations, kept with `inertia` in dynamics: `None` for the
+    /// node belt and in the relaxation.
+    pub bodies: Option<Bodies<'a>>,
+}
+
+/// A rigid-body belt's rotational inertia as the loads change its body masses: the
+/// material lies along the body like the belt, so a body of mass m has
+/// I = I_belt·m/m_belt (= m·l²/12, Kubas eq. 2), and a body gaining material keeps its
+/// angular momentum (the material arrives without spin), as its translation keeps its
+/// momentum.
+pub struct Bodies<'a> {
+    /// The belt's own body inertias, kg·m² (`Model::body_inertia`).
+    pub belt_inertia: &'a [f64],
+    /// The integrator's body inertias, kg·m².
+    pub inertia: &'a mut [f64],
+    /// The body spins, rad/s.
+    pub spin: &'a mut [f64],
+}
+
+/// Inertia of a body of belt mass `belt_mass` and belt inertia `belt_inertia` carrying
+/// `mass` in all (belt and material), kg·m².
+#[inline]
+pub fn body_inertia(belt_inertia: f64, belt_mass: f64, mass: f64) -> f64 {
+    belt_inertia * (mass / belt_mass)
 }
 
 /// The loads stage: track the zone edges to the belt at `x`, recompute the masses of the
@@ -399,6 +423,12 @@ pub fn update(
                     }
                     mass[i] = new;
                     inv_mass[i] = 1.0 / new;
+                    if let Some(b) = masses.bodies.as_mut() {
+                        if new > before {
+                            b.spin[i] *= before / new;
+                        }
+                        b.inertia[i] = body_inertia(b.belt_inertia[i], belt_mass[i], new);
+                    }
                 }
             }
         }

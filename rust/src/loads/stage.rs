@@ -18,6 +18,11 @@ pub fn update_loads(cx: &mut StageContext<'_>) {
         &mut super::MassArrays {
             node_mass: &mut s.node_mass,
             inertia: physical.then_some((&mut inertia.mass, &mut inertia.inv_mass)),
+            bodies: (physical && m.is_rigid()).then_some(super::Bodies {
+                belt_inertia: &m.body_inertia,
+                inertia: &mut inertia.body_inertia,
+                spin: &mut s.body_spin,
+            }),
         },
     );
 }

@@ -95,18 +95,18 @@ impl Scene {
             }
         }
         if self.belt.formulation == Formulation::RigidBody {
+            if self.initial.is_some() {
+                return Err(BeltError::invalid(
+                    "initial",
+                    "a design start",
+                    "the design-state placement stretches node-belt chords to the design tensions; a rigid body's joint stretch on a drum is not its chord's (|d| = chord − l·cos(α/2)), so the rigid_body formulation starts from its placement on the pulleys' path: drop [initial] and relax it (recording.stabilise = true, Simulation.stabilise), or use belt.formulation = \"node_kelvin_voigt\"",
+                ));
+            }
             if self.belt.tension_only {
                 return Err(BeltError::invalid(
                     "belt.tension_only",
                     true,
                     "the rigid_body formulation has zero-free-length spring-dampers between its bodies (Kubas eq. 20), which carry no compression along the belt by construction; tension_only applies to the node formulation only",
-                ));
-            }
-            if !self.loads.is_empty() {
-                return Err(BeltError::invalid(
-                    "loads",
-                    format!("{} load(s)", self.loads.len()),
-                    "bulk material loads change node masses during a run and are not available with belt.formulation = \"rigid_body\" (the body inertias would not follow); use \"node_kelvin_voigt\"",
                 ));
             }
         }

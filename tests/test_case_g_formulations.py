@@ -1,0 +1,134 @@
+"""Case G with both belt formulations (issue 12), shortened to 100 m as tests/test_case_g.py
+shortens it, here to 60 m: a loaded rigid-body belt runs the same start as the node belt.
+Steady running against DIN 22101 and the node model; the start's peak against the node
+model. The side-by-side study is benches/case_g.py --formulations (docs/case-g.md).
+
+Cost: four starts (each formulation loaded and bare), 5 s each; the rigid bodies take half
+the node belt's step at about three times its cost per step, so they dominate (about a
+minute quiet): the smallest run that holds a loaded strand, a start and a steady window."""
+
+from dataclasses import replace
+
+import pytest
+
+import beltrs
+from beltrs.analysis import low_pass, probe_run
+from beltrs.scene_file import dumps_scene, loads_scene
+from beltrs.scenes import GUO_WANG, guo_wang_conveyor, guo_wang_din
+
+LENGTH = 60.0
+R = GUO_WANG["drum_radius"]
+RAMP = 2.0  # s, Harrison
+SETTLE = 3.0  # s at full speed
+INTERVAL = 0.005  # s
+PROBES = [(LENGTH - 10.0, R), (LENGTH - 10.0, -R)]  # 10 m before / after the head drum
+
+
+def start(formulation, **kw):
+    curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
+    sim = beltrs.Simulation(guo_wang_conveyor(curve, length=LENGTH, formulation=formulation, **kw))
+    sim.stabilise(tolerance=1e-5, max_steps=400_000)
+    return sim, probe_run(sim, PROBES, RAMP + SETTLE, INTERVAL)
+
+
+FORMULATIONS = ("node_kelvin_voigt", "rigid_body")
+
+
+@pytest.fixture(scope="module")
+def runs():
+    return {f: start(f) for f in FORMULATIONS}
+
+
+@pytest.fixture(scope="module")
+def bare():
+    """No material, f = 0: what each model loses on its own (the belt points landing on
+    and leaving the drums, docs/case-g.md)."""
+    return {f: start(f, f=0.0, material=0.0) for f in FORMULATIONS}
+
+
+def steady(data):
+    t = data["time"]
+    window = t >= t[-1] - 2.5  # the last 2.5 s: 25 periods of the 10 Hz chordal ripple
+    return data["tension"][window].mean(axis=0)
+
+
+def test_loaded_rigid_belt_carries_the_material(runs):
+    sim, _ = runs["rigid_body"]
+    # The material rides on the bodies: 55.6 kg/m on the carry strand from 5 m to the head.
+    extra = sim.node_masses().sum() - sim.node_mass.sum()
+    expected = GUO_WANG["material"] * (LENGTH - 5.0)
+    # 1 %: the zone's edges sit on the bodies nearest the loading point and the head drum's
+    # top (within a body, 0.2 m of 95 m).
+    assert extra == pytest.approx(expected, rel=0.01)
+
+
+def net_force(runs, bare, f):
+    """Steady T1 − T2 at the probes over the bare conveyor's, and the absolute T1, T2."""
+    t1, t2 = steady(runs[f][1])
+    b1, b2 = steady(bare[f][1])
+    return (t1 - t2) - (b1 - b2), t1, t2
+
+
+def test_steady_running_node_matches_din_22101(runs, bare):
+    d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
+    net, t1, t2 = net_force(runs, bare, "node_kelvin_voigt")
+    # The takeup fixes the tail tension: absolute tensions within 1.5 %, as
+    # tests/test_case_g.py holds them (the window mean of the ripple).
+    assert t1 == pytest.approx(d1, rel=0.015)
+    assert t2 == pytest.approx(d2, rel=0.015)
+    # What resistances and loading add over the bare conveyor is DIN's F_U less the
+    # 2 x 10 m outside the probes (1.4 kN here). 5 %: tests/test_case_g.py's 3 % at 150 m,
+    # with a F_U 2.5 times smaller here against the same ±10 kN ripple.
+    assert net == pytest.approx(d1 - d2, rel=0.05)
+
+
+@pytest.mark.xfail(strict=True, reason="measured (issue 12): the loaded rigid-body belt's T1 - T2 over its bare run "
+                   "is 1.66 kN against DIN's 1.40 kN (+19 %; the node belt's within 5 %) on this 60 m case G, "
+                   "and 2.71 kN against 2.39 kN at 100 m; absolute T1, T2 within 1.5 %. Not explained yet: "
+                   "the material's inertia and loading on the bodies, or the rigid bodies on the idlers (chord "
+                   "contact between mass centres) under the load, are the candidates")
+def test_steady_running_rigid_matches_din_22101(runs, bare):
+    d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
+    net, t1, t2 = net_force(runs, bare, "rigid_body")
+    assert t1 == pytest.approx(d1, rel=0.015)
+    assert t2 == pytest.approx(d2, rel=0.015)
+    assert net == pytest.approx(d1 - d2, rel=0.05)
+
+
+def test_start_peak_agrees_between_formulations(runs):
+    peaks = {}
+    for f, (_, data) in runs.items():
+        peaks[f] = low_pass(data["tension"][:, 0], INTERVAL, 2.0).max()
+    # Below 2 Hz the start's own dynamics (the strand's modes, rigid-body acceleration of
+    # belt, material and rolls) are the same physics in both models; what differs is each
+    # model's loss on the drums and the chordal ripple above 2 Hz. 3 %.
+    assert peaks["rigid_body"] == pytest.approx(peaks["node_kelvin_voigt"], rel=0.03)
+
+
+def test_bad_formulation_input_is_refused_by_name():
+    with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
+        guo_wang_conveyor(length=LENGTH, formulation="rigid")
+    with pytest.raises(beltrs.SceneError, match="start = 'rest'.*rigid_body.*start=None"):
+        guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
+    # The engine refuses a design start under the rigid-body belt, naming [initial].
+    scene = guo_wang_conveyor(length=LENGTH, start="rest")
+    rigid = replace(scene, belt=replace(scene.belt, formulation="rigid_body"))
+    with pytest.raises(beltrs.SceneError, match="initial"):
+        beltrs.Simulation(rigid)
+    # The builder: a known formulation, and no running start with rigid bodies.
+    from beltrs.conveyor import Conveyor
+
+    with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
+        Conveyor(formulation="rigid").validate()
+    with pytest.raises(beltrs.SceneError, match="start = 'running'"):
+        Conveyor(formulation="rigid_body", start="running").validate()
+    scene = Conveyor(formulation="rigid_body", capacity=400.0).scene()
+    assert scene.belt.formulation == "rigid_body" and scene.initial is None and scene.recording.stabilise
+    assert scene.loads and scene.loads[0].mass_per_length > 0
+    # From TOML: the builder's field, and a scene file's loads on a rigid-body belt.
+    assert beltrs.conveyor.loads('[conveyor]\nformulation = "rigid_body"\n').formulation == "rigid_body"
+    with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
+        beltrs.conveyor.loads('[conveyor]\nformulation = "rigid"\n').scene()
+    text = dumps_scene(guo_wang_conveyor(length=LENGTH, formulation="rigid_body"))
+    back = loads_scene(text)
+    assert back.belt.formulation == "rigid_body" and back.loads
