@@ -113,7 +113,8 @@ def main(argv=None) -> int:
                       node_velocity=False, progress=False)
         wall = time.perf_counter() - wall
         j = res.pulley_names.index("head")
-        out = {"variant": name, "loss": LOSS if name.startswith("zener") else None, "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
+        out = {"variant": name, "loss": LOSS if name.startswith("zener") else None,
+               "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
                "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
                "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}
