@@ -4,6 +4,7 @@ its own steady state, the agreement of the dynamic drive tensions with beltrs.st
 rigid-body limit F = M_eq·a (thesis §1.4), the takeup travel of a loaded start against
 the change in the belt's elastic length, and bad input on every path."""
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -297,3 +298,75 @@ def test_design_start_helpers_bad_input():
         design_start.initial(p, [design_start.Run(0.0, 1.0, 0.0, 1.0)], 10.0, speed=math.inf)
     with pytest.raises(beltrs.SceneError, match=r"start = 'x': must be None, 'rest' or 'running'"):
         beltrs.scenes.guo_wang_conveyor(length=50.0, start="x")
+
+
+# --- sag placement (initial.sag) ----------------------------------------------------------
+
+def _span_sags(x, pitch, spans):
+    """(x of the lowest carry node, its depth below the roll tops) in each carry span."""
+    out = []
+    for k in spans:
+        xa = 0.5 * pitch + pitch * k
+        m = (x[:, 1] > -0.2) & (x[:, 0] > xa) & (x[:, 0] < xa + pitch)
+        j = np.flatnonzero(m)[np.argmin(x[m, 1])]
+        out.append((x[j, 0] - xa, -x[j, 1]))
+    return np.array(out)
+
+
+def test_builder_places_the_spans_in_their_sag():
+    # A level 60 m builder conveyor at rest (ST1250, 500 t/h at 2 m/s: q = 1055 N/m on the
+    # loaded carry, T = 14 kN, a = 1.2 m, elements of 0.21 m). The placement is the discrete
+    # belt's statics (kernel tests: model/design_tests.rs); here, each span's lowest node
+    # against the parabola q·x·(a − x)/(2T) at its abscissa. The belt over a roll is one
+    # straight element whose nodes sit up to θ·l/2 above the continuous curve (θ = q·a/2T,
+    # l the element) plus R·θ²/2 for its tilt on a roll of radius R: 4.1 mm of the 11.6 mm
+    # mid-span sag at these long elements, so the reading spreads from span to span by
+    # where the nodes fall (measured 7.8–9.9 mm); that is the tolerance. In 0.5 s at rest the
+    # sags then move by under a fifth of q·a²/(8T) (measured 0.9 mm: the drive holds and
+    # the takeup settles), where the straight placement's spans sink by all of it.
+    c = Conveyor(profile=[(0, 0), (60, 0)], belt="ST1250", capacity=500.0, speed=2.0)
+    scene = c.scene()
+    assert scene.initial.sag is True
+    q = (c.belt_mass + c.material_mass) * 9.81
+    a = c.carry.pitch
+    spans = range(15, 33)  # 18.6–40.2 m: loaded, away from the drums
+    moved = {}
+    for sag in (True, False):
+        sim = beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag=sag)))
+        x0 = sim.state()["node_position"]
+        carry = (x0[:, 1] > -0.2) & (x0[:, 0] > 20) & (x0[:, 0] < 40)
+        t = float(sim.tensions()[carry].mean())
+        theta, el = q * a / (2 * t), float(sim.rest_length[0])
+        mid = q * a * a / (8 * t)
+        before = _span_sags(x0, a, spans)
+        if sag:
+            assert t == pytest.approx(14e3, rel=1e-3)
+            parabola = q * before[:, 0] * (a - before[:, 0]) / (2 * t)
+            bound = theta * el / 2 + 0.0635 * theta**2 / 2
+            assert np.all(np.abs(before[:, 1] - parabola) < bound), (before, parabola, bound)
+            assert np.all(before[:, 1] > 0.5 * mid)
+        else:
+            assert np.abs(before[:, 1]).max() < 1e-9  # straight from roll to roll
+        sim.run(0.5, record_interval=0.05, tension=False, node_position=False, node_velocity=False)
+        after = _span_sags(sim.state()["node_position"], a, spans)
+        moved[sag] = np.abs(after[:, 1] - before[:, 1]).max() / mid
+    assert moved[True] < 0.2 and moved[False] > 0.25, moved
+
+
+def test_initial_sag_round_trips_and_bad_values_name_the_field(tmp_path):
+    s = loop_scene(tension=(5e3,))
+    assert s.initial.sag is True
+    s.initial = replace(s.initial, sag=False)
+    path = tmp_path / "s.toml"
+    s.save(path)
+    assert "sag = false" in path.read_text()
+    back = beltrs.load_scene(path)
+    assert back == s and back.initial.sag is False
+    for bad in ("yes", 1, None):
+        with pytest.raises(beltrs.SceneError, match=r"initial.sag"):
+            beltrs.Simulation(replace(s, initial=replace(s.initial, sag=bad)))
+    with pytest.raises(beltrs.SceneError, match=r"initial.sag = 'yes': expected true or false"):
+        beltrs.Scene.from_dict({"initial": {"tension": [1.0], "sag": "yes"}})
+    path.write_text(path.read_text().replace("sag = false", 'sag = "no"'))
+    with pytest.raises(beltrs.SceneError, match=r"initial.sag"):
+        beltrs.load_scene(path)

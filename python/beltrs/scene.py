@@ -980,12 +980,18 @@ class Initial(_Table):
             a turn needs a radius > 0 and less than 179 degrees (a 180-degree wrap is two
             corners); node 0 sits where corner 0's arc begins; the path may not pass inside
             a pulley or idler. Default (): the pulleys' tangent path.
+        sag: place each straight span that rests on idler rolls in its static sag under
+            the weight of belt and material at the design tension (the discrete form of
+            q*x*(a - x)/(2*T) between the rolls, each roll pressed by the span it carries;
+            ``docs/design-start.md``). False: straight from roll to roll (the spans then
+            sink into their sag at the start of the run). Default True.
     """
 
     tension: tuple[float, ...]
     distance: tuple[float, ...]
     speed: float
     path: tuple[tuple[float, float, float], ...]
+    sag: bool
 
     def __post_init__(self) -> None:
         _normalise(self)

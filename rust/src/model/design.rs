@@ -352,7 +352,13 @@ pub(super) fn place(
             ));
         }
     }
-    let point = |s: f64| path.point(s);
+    // With wrap contact an element on a drum is measured along its path round it
+    // (`contact::wrap`): nodes at equal arc length there, not sunk by a penetration.
+    let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap;
+    let sink_wraps: &[ContactWrap] = if wrap_contact { &[] } else { &wraps };
+    // The sag of the spans on rolls (`super::sag`), updated between passes.
+    let sag = std::cell::RefCell::new(super::sag::SagShape::default());
+    let point = |s: f64| sag.borrow().point(path, s);
     // Walk n elements from node 0: element e gets the chord l⁰·(1 + T/EA) at its middle
     // plus `extra[e]` (what sinking its nodes into a drum will take off it).
     let walk = |l0: f64, extra: &[f64], mut out: Option<&mut Vec<f64>>| -> BeltResult<f64> {
@@ -364,7 +370,11 @@ pub(super) fn place(
             // the tension at the element's middle: half its stretched length on
             let guess = l0 * (1.0 + strain(s + 0.5 * l0));
             let chord = l0 * (1.0 + strain(s + 0.5 * guess)) + e;
-            s = crate::geometry::next_at_chord_on(point, s, chord);
+            s = if wrap_contact && (wrap_at(s).is_some() || wrap_at(s + chord).is_some()) {
+                s + chord // the wrapped length is the path's length there
+            } else {
+                crate::geometry::next_at_chord_on(point, s, chord)
+            };
             crate::interrupt::check(64)?;
         }
         Ok(s - length)
@@ -415,28 +425,43 @@ pub(super) fn place(
     };
     // Sinking shortens the chords on a wrap (by about δ/r) and, less, those running onto
     // it: walk again with each element lengthened by what the last sinking took off it
-    // (a fixed point; the second correction is below 10⁻³ of the first).
+    // (a fixed point; the second correction is below 10⁻³ of the first). The sag is a
+    // fixed point too: its shape depends on where the nodes fall between the rolls, and
+    // its extra length moves them along; it is redone until no node moves by 1 µm.
+    let sags = init.sag && scene.gravity > 0.0 && !scene.idlers.is_empty();
+    let passes = if sags { 8 } else { 3 };
     let mut extra = vec![0.0; n];
     let mut l0 = close(&extra)?;
     let mut at = Vec::with_capacity(n);
     let mut positions = Vec::new();
-    for pass in 0..3 {
+    let mut previous: Vec<f64> = Vec::new();
+    for pass in 0..passes {
         at.clear();
         walk(l0, &extra, Some(&mut at))?;
         let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
-        positions = if wraps.is_empty() {
+        positions = if sink_wraps.is_empty() {
             nominal
         } else {
             sink(&nominal)
         };
-        if wraps.is_empty() || pass == 2 {
+        let settled =
+            previous.len() == n && at.iter().zip(&previous).all(|(a, b)| (a - b).abs() <= 1e-6);
+        if (sink_wraps.is_empty() && !sags) || pass == passes - 1 || (pass >= 2 && settled) {
             break;
         }
-        for e in 0..n {
-            let chord = (positions[(e + 1) % n] - positions[e]).norm();
-            let guess = l0 * (1.0 + strain(at[e] + 0.5 * l0));
-            let target = l0 * (1.0 + strain(at[e] + 0.5 * guess));
-            extra[e] += target - chord;
+        previous.clone_from(&at);
+        if !sink_wraps.is_empty() {
+            for e in 0..n {
+                let chord = (positions[(e + 1) % n] - positions[e]).norm();
+                let guess = l0 * (1.0 + strain(at[e] + 0.5 * l0));
+                let target = l0 * (1.0 + strain(at[e] + 0.5 * guess));
+                extra[e] += target - chord;
+            }
+        }
+        if sags {
+            let mass = node_masses(scene, path, &positions, l0)?;
+            let shape = super::sag::shape(scene, path, &at, &mass, |s| init.tension_at(s, length));
+            *sag.borrow_mut() = shape;
         }
         l0 = close(&extra)?;
     }
@@ -496,6 +521,21 @@ pub(super) fn place(
             idler_omega,
         },
     })
+}
+
+/// The nodes' masses, kg (belt plus the loads' material where it lies on `positions`), for
+/// elements of rest length `l0` (m).
+fn node_masses(scene: &Scene, path: &BeltPath, positions: &[V2], l0: f64) -> BeltResult<Vec<f64>> {
+    let n = positions.len();
+    let belt_mass = vec![scene.belt.mass_per_length * l0; n];
+    let mut loads = crate::loads::compile(&scene.loads, path, l0)?;
+    loads.retain(|l| l.mass_per_length > 0.0);
+    if loads.is_empty() {
+        return Ok(belt_mass);
+    }
+    let belt = crate::loads::Belt { nodes: n, l: l0 };
+    let edges = crate::loads::initial_edges(&loads, positions, belt);
+    Ok(crate::loads::node_masses(&belt_mass, &loads, &edges, belt))
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ mod idlers;
 mod open;
 mod path;
 mod pulleys;
+mod sag;
 mod stable_step;
 mod stages;
 

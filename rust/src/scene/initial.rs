@@ -43,6 +43,12 @@ pub struct InitialState {
     /// path may not pass inside a pulley or an idler with contact. Default `[]`: the
     /// pulleys' tangent path (`belt.length`'s path).
     pub path: Vec<[f64; 3]>,
+    /// Place each straight span that rests on idler rolls in its static sag under the
+    /// weight of belt and material at the design tension (`model/sag.rs`; the discrete
+    /// form of the parabola q·x·(a − x)/(2T) between the rolls, each roll pressed by the
+    /// load it carries). `false`: straight from roll to roll (the spans then sink into
+    /// their sag in the first second of the run). Default `true`.
+    pub sag: bool,
 }
 
 impl Default for InitialState {
@@ -52,6 +58,7 @@ impl Default for InitialState {
             distance: Vec::new(),
             speed: 0.0,
             path: Vec::new(),
+            sag: true,
         }
     }
 }

@@ -1,0 +1,279 @@
+//! Sag placement for a design start (`initial.sag`, `docs/design-start.md`): each straight
+//! span of the placement path that rests on idler rolls is placed in its static sag under
+//! the weight of belt and material at the design tension.
+//!
+//! Statics of the discrete belt. On a straight line of the path (unit direction d, normal
+//! n pointing up, n·ŷ = cos β) node j sits at abscissa x_j (its arc length on the line)
+//! with an offset y_j along n. With element tensions H_e (the design tension at the
+//! element's middle; the slopes are small, so the tension is its component along the line
+//! to a relative (q·a/2T)²/2, 10⁻³ at the steepest), node j's balance along n is
+//!
+//! H_j·(y_{j+1} − y_j)/Δx_j − H_{j−1}·(y_j − y_{j−1})/Δx_{j−1} + R_j = m_j·g·cos β,
+//!
+//! with m_j the node's mass (belt plus material) and R_j the rolls' push: a roll touching
+//! the line from below at abscissa x_k, on the element from node e to e + 1 at γ = (x_k −
+//! x_e)/Δx_e, presses with k·δ, δ = h_k − ((1 − γ)·y_e + γ·y_{e+1}) its penetration (h_k the
+//! roll top's offset, 0 on a path laid on the rolls), shared by the lever rule as the
+//! idler contact does (`contact::idler_contact`); on an element tilted by φ the contact
+//! point lies R·sin φ downhill of the roll's top and R·(1 − cos φ) below it (R the roll's
+//! radius), with φ from the last solve (a fixed point). This is linear and tridiagonal in y; the
+//! nodes just outside the line (on a drum or a curve) are held at offset 0. A roll that
+//! would pull (δ < 0) is dropped and the system solved again. Between two rolls the nodes
+//! then lie on the funicular polygon of the node loads: on the parabola q·x·(a − x)/(2H)
+//! through the contact points to within the chord of one element next to each roll, and
+//! within (q·a/H)²/96 of the catenary (H/q)·(cosh(q·a/2H) − cosh(q·(x − a/2)/H)).
+
+use crate::geometry::{BeltPath, Segment};
+use crate::scene::Scene;
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// The sag offsets of the placement: per line of the path, its unit normal (up) and the
+/// knots (arc length s, offset y) in increasing s, with offset 0 at both ends of the line.
+#[derive(Debug, Clone, Default)]
+pub(super) struct SagShape {
+    lines: Vec<SagLine>,
+}
+
+#[derive(Debug, Clone)]
+struct SagLine {
+    from: f64,
+    to: f64,
+    normal: V2,
+    knots: Vec<(f64, f64)>,
+}
+
+impl SagShape {
+    /// The placement point at arc length `s` (modulo the path length): the path's point
+    /// moved along its line's normal by the interpolated offset.
+    pub fn point(&self, path: &BeltPath, s: f64) -> V2 {
+        let p = path.point(s);
+        let s = s.rem_euclid(path.length);
+        match self.lines.iter().find(|l| s > l.from && s < l.to) {
+            None => p,
+            Some(l) => {
+                let k = l.knots.partition_point(|&(x, _)| x <= s);
+                if k == 0 || k >= l.knots.len() {
+                    return p;
+                }
+                let ((s0, y0), (s1, y1)) = (l.knots[k - 1], l.knots[k]);
+                let w = if s1 > s0 { (s - s0) / (s1 - s0) } else { 0.0 };
+                p + l.normal * (y0 + (y1 - y0) * w)
+            }
+        }
+    }
+}
+
+/// A roll under a line: abscissa on the line (m), top's offset (m), stiffness (N/m).
+struct Roll {
+    x: f64,
+    top: f64,
+    radius: f64,
+    stiffness: f64,
+}
+
+/// The sag of every straight line of `path` that rests on rolls, for nodes at arc lengths
+/// `at` (increasing from node 0, below the path length) of masses `mass` (kg), with the
+/// design tension `tension(s)` (N) at arc length s.
+pub(super) fn shape(
+    scene: &Scene,
+    path: &BeltPath,
+    at: &[f64],
+    mass: &[f64],
+    tension: impl Fn(f64) -> f64,
+) -> SagShape {
+    let n = at.len();
+    let g = scene.gravity;
+    let mut lines = Vec::new();
+    if g <= 0.0 || n < 3 {
+        return SagShape { lines };
+    }
+    for (seg, &from) in path.segments.iter().zip(&path.starts) {
+        let Segment::Line { a, b } = *seg else {
+            continue;
+        };
+        let len = (b - a).norm();
+        if len <= 0.0 {
+            continue;
+        }
+        let d = (b - a) / len;
+        let mut normal = V2::new(-d.y, d.x);
+        if normal.y < 0.0 {
+            normal = -normal;
+        }
+        let cos_beta = normal.y;
+        if cos_beta <= 1e-9 {
+            continue; // a vertical line hangs straight
+        }
+        let rolls: Vec<Roll> = scene
+            .idlers
+            .iter()
+            .filter(|r| r.contact_stiffness > 0.0)
+            .filter_map(|r| {
+                let c = V2::new(r.center[0], r.center[1]) - a;
+                let (x, off) = (c.dot(&d), c.dot(&normal));
+                let top = off + r.radius;
+                (x > 0.0 && x < len && off < 0.0 && top.abs() <= 1e-3 * r.radius + 1e-6).then_some(
+                    Roll {
+                        x,
+                        top,
+                        radius: r.radius,
+                        stiffness: r.contact_stiffness,
+                    },
+                )
+            })
+            .collect();
+        if rolls.is_empty() {
+            continue;
+        }
+        // The nodes on the line, in order (node order may run either way along it and
+        // wrap round node 0).
+        let to = from + len;
+        let first = match (0..n).find(|&i| at[i] > from && at[i] < to) {
+            Some(i) => i,
+            None => continue,
+        };
+        let first = if first == 0 && at[n - 1] > from && at[n - 1] < to {
+            // the run wraps round node 0: start after the last node off the line
+            (0..n)
+                .rev()
+                .find(|&i| !(at[i] > from && at[i] < to))
+                .map_or(0, |i| i + 1)
+        } else {
+            first
+        };
+        let mut idx = Vec::new();
+        let mut i = first;
+        while idx.len() < n && at[i % n] > from && at[i % n] < to {
+            idx.push(i % n);
+            i += 1;
+        }
+        let m = idx.len();
+        if m == 0 {
+            continue;
+        }
+        // Abscissae with the fixed neighbours (offset 0) at both ends.
+        let xs: Vec<f64> = std::iter::once(0.0)
+            .chain(idx.iter().map(|&i| at[i] - from))
+            .chain(std::iter::once(len))
+            .collect();
+        let xs = {
+            // the neighbours sit off the line: at their distance along the path
+            let mut xs = xs;
+            let before = at[(idx[0] + n - 1) % n];
+            let after = at[(idx[m - 1] + 1) % n];
+            xs[0] = -((from - before).rem_euclid(path.length));
+            xs[m + 1] = len + (after - to).rem_euclid(path.length);
+            xs
+        };
+        // Element tensions between consecutive points (m + 1 elements).
+        let h: Vec<f64> = (0..=m)
+            .map(|e| tension(from + 0.5 * (xs[e] + xs[e + 1])))
+            .collect();
+        let weight: Vec<f64> = idx.iter().map(|&i| mass[i] * g * cos_beta).collect();
+        let mut active = vec![true; rolls.len()];
+        // The slope of the element over each roll: a tilted element's closest point to
+        // the roll's centre (its foot) lies R·sin φ downhill of the top, and the element
+        // touches when its foot lies R·(1 − cos φ) below the top (29 µm on a 0.1 m roll
+        // at φ = 0.024, eight times the penetration that carries the span).
+        let mut slope = vec![0.0; rolls.len()];
+        let mut y = vec![0.0; m + 2];
+        // The element under the foot of roll k and the foot's share γ along it.
+        let place = |r: &Roll, phi: f64| {
+            let (sin, cos) = (phi.atan().sin(), phi.atan().cos());
+            let foot = r.x - r.radius * sin;
+            let e = xs.partition_point(|&x| x <= foot).clamp(1, m + 1) - 1;
+            let gamma = ((foot - xs[e]) / (xs[e + 1] - xs[e])).clamp(0.0, 1.0);
+            (e, gamma, r.top - r.radius * (1.0 - cos))
+        };
+        for _ in 0..16 {
+            // unknowns y[1..=m]; rows j = 1..=m
+            let mut lo = vec![0.0; m + 2];
+            let mut di = vec![0.0; m + 2];
+            let mut up = vec![0.0; m + 2];
+            let mut rhs = vec![0.0; m + 2];
+            for j in 1..=m {
+                let (kl, kr) = (h[j - 1] / (xs[j] - xs[j - 1]), h[j] / (xs[j + 1] - xs[j]));
+                lo[j] = kl;
+                up[j] = kr;
+                di[j] = -(kl + kr);
+                rhs[j] = weight[j - 1];
+            }
+            for ((r, _), &phi) in rolls
+                .iter()
+                .zip(&active)
+                .zip(&slope)
+                .filter(|((_, &on), _)| on)
+            {
+                let (e, gamma, top) = place(r, phi);
+                let (we, wf) = (1.0 - gamma, gamma);
+                let k = r.stiffness;
+                // force k·(top − we·y_e − wf·y_f) to e (share we) and f = e + 1 (share wf)
+                for (row, share) in [(e, we), (e + 1, wf)] {
+                    if row == 0 || row == m + 1 {
+                        continue;
+                    }
+                    rhs[row] -= share * k * top;
+                    for (col, w) in [(e, we), (e + 1, wf)] {
+                        if col == 0 || col == m + 1 {
+                            continue;
+                        }
+                        let c = share * k * w;
+                        if col == row {
+                            di[row] -= c;
+                        } else if col + 1 == row {
+                            lo[row] -= c;
+                        } else {
+                            up[row] -= c;
+                        }
+                    }
+                }
+            }
+            // Thomas algorithm (the matrix is diagonally dominant).
+            let mut cp = vec![0.0; m + 2];
+            let mut dp = vec![0.0; m + 2];
+            for j in 1..=m {
+                let denom = di[j] - lo[j] * cp[j - 1];
+                cp[j] = up[j] / denom;
+                dp[j] = (rhs[j] - lo[j] * dp[j - 1]) / denom;
+            }
+            let mut next = vec![0.0; m + 2];
+            for j in (1..=m).rev() {
+                next[j] = dp[j] - cp[j] * next[j + 1];
+            }
+            let moved = next
+                .iter()
+                .zip(&y)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            y = next;
+            let mut changed = false;
+            for ((r, on), phi) in rolls.iter().zip(active.iter_mut()).zip(slope.iter_mut()) {
+                let (e, gamma, top) = place(r, *phi);
+                let depth = top - ((1.0 - gamma) * y[e] + gamma * y[e + 1]);
+                if *on && depth < 0.0 {
+                    *on = false;
+                    changed = true;
+                }
+                *phi = (y[e + 1] - y[e]) / (xs[e + 1] - xs[e]);
+            }
+            if !changed && moved <= 1e-10 {
+                break;
+            }
+        }
+        let mut knots = Vec::with_capacity(m + 2);
+        knots.push((from, 0.0));
+        for j in 1..=m {
+            knots.push((from + xs[j], y[j]));
+        }
+        knots.push((to, 0.0));
+        lines.push(SagLine {
+            from,
+            to,
+            normal,
+            knots,
+        });
+    }
+    SagShape { lines }
+}
