@@ -103,12 +103,12 @@ pub fn advance_all(
     } else {
         (0.0, 0.0)
     };
-    for e in 0..elements {
+    let arms = s.arm_force.iter_mut().zip(s.arm_length.iter_mut());
+    for (e, ((force, length), &k)) in arms.zip(stiffness).take(elements).enumerate() {
         let j = if e + 1 == n { 0 } else { e + 1 };
         let l = (s.position[j] - s.position[e]).norm();
-        let dl = l - s.arm_length[e];
-        s.arm_force[e] = a * s.arm_force[e] + b * stiffness[e] * dl;
-        s.arm_length[e] = l;
+        *force = a * *force + b * k * (l - *length);
+        *length = l;
     }
 }
 
