@@ -14,7 +14,12 @@ Variants: ``base`` (builder defaults: nodal contact, ideal speed-held head drum,
 stick-slip between mu_s and mu_k), ``creep`` (creep friction on the drums), ``wrap``
 (``belt.pulley_contact = "wrap"``), ``tau1e4`` / ``tau3e4`` / ``tau1e3`` (Voigt
 ``damping_time`` instead of the element damping ratio), ``no_idler_damp`` / ``idler_damp4``
-(roll contact damping 0 / 4x), ``no_gravity``, ``no_resistance`` (DIN f = 0 on the rolls).
+(roll contact damping 0 / 4x), ``no_gravity``, ``no_resistance`` (DIN f = 0 on the rolls),
+``zener`` / ``zener_wrap`` (a viscoelastic belt, ``belt.loss_factor`` = ``--loss-factor``
+peaking at ``--loss-frequency`` Hz, on top of the builder's element damping; with nodal or
+wrap contact).
+
+    python benches/ripple_drive.py zener zener_wrap --loss-factor 0.1 --loss-frequency 5
 """
 
 from __future__ import annotations
@@ -73,7 +78,13 @@ VARIANTS = {
     "idler_damp4": lambda s: replace(s, idlers=[replace(i, contact_damping=4 * i.contact_damping) for i in s.idlers]),
     "no_gravity": lambda s: replace(s, gravity=0.0),
     "no_resistance": lambda s: replace(s, idlers=[replace(i, resistance=0.0) for i in s.idlers]),
+    "zener": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1]),
+    "zener_wrap": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1], pulley_contact="wrap"),
 }
+
+#: (loss factor, its frequency in Hz) of the ``zener`` variants (``--loss-factor``,
+#: ``--loss-frequency``).
+LOSS = [0.1, 5.0]
 
 
 def main(argv=None) -> int:
@@ -86,7 +97,10 @@ def main(argv=None) -> int:
     ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
     ap.add_argument("--pi", action="store_true", help="PI speed controller (default gains) on the head drive")
     ap.add_argument("--motor-inertia", type=float, default=0.0, help="kg*m^2 at the motor shaft (1500 rpm)")
+    ap.add_argument("--loss-factor", type=float, default=0.1, help="belt.loss_factor of the zener variants")
+    ap.add_argument("--loss-frequency", type=float, default=5.0, help="belt.loss_frequency, Hz")
     args = ap.parse_args(argv)
+    LOSS[:] = [args.loss_factor, args.loss_frequency]
     kw = {} if args.element is None else {"element_length": args.element}
     drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0),
                       inertia=args.motor_inertia, controller=beltrs.SpeedController() if args.pi else None)
@@ -99,7 +113,8 @@ def main(argv=None) -> int:
                       node_velocity=False, progress=False)
         wall = time.perf_counter() - wall
         j = res.pulley_names.index("head")
-        out = {"variant": name, "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
+        out = {"variant": name, "loss": LOSS if name.startswith("zener") else None,
+               "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
                "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
                "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}

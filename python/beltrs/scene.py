@@ -776,6 +776,17 @@ class Belt(_Table):
             element's damping is tau times its stiffness, b = tau*EA/l (and tau*EI/l for
             the rigid bodies' torsional spring-dampers). Not with ``damping_ratio`` > 0.
             Default None: damping from ``damping_ratio``.
+        loss_factor: loss factor tan delta of the belt material, dimensionless, in [0, 1]:
+            each element becomes a Zener (standard linear solid) element, its Kelvin-Voigt
+            spring with a Maxwell arm in parallel whose loss factor peaks at this value at
+            ``loss_frequency`` (docs/wrap-contact.md, "A viscoelastic belt").
+            ``axial_stiffness`` stays the relaxed (static) EA; the instantaneous stiffness
+            is (1 + r) EA, r = 2 eta^2 + 2 eta sqrt(1 + eta^2), and sets the explicit step.
+            Node belt under central differences only (a SceneError otherwise). Default 0:
+            no arm.
+        loss_frequency: frequency at which the loss factor peaks, Hz, > 0. Default 5
+            (a long conveyor's longitudinal strand modes, 1-20 Hz; tan delta is above half
+            its peak from about f/3.7 to 3.7 f).
         length: unstretched length, m. Default None = length of the initial path.
         elements: number of elements (nodes - 1 for an open belt). Default None = fewest
             with each element at most ``max_element_angle`` of arc on the smallest pulley
@@ -832,6 +843,8 @@ class Belt(_Table):
     max_placement_strain: float
     pulley_contact: str
     damping_time: Optional[float]
+    loss_factor: float
+    loss_frequency: float
     start: Optional[BeltEnd]
     end: Optional[BeltEnd]
 

@@ -238,6 +238,7 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
             // Done already when the last integration was fused with this pass.
             Stage::Axial | Stage::AxialDamped if axial_done => {}
             Stage::Axial | Stage::AxialDamped => crate::belt::node::stage::axial(cx),
+            Stage::BeltArms => crate::belt::node::zener::arm_stage(cx),
             Stage::Bending => crate::belt::node::stage::bending(cx),
             Stage::RigidChain => crate::belt::rigid::stage::chain(cx),
             Stage::PulleyContact => crate::contact::stage::pulley_contact(cx),

@@ -140,6 +140,16 @@ impl Simulation {
         if self.state.creep.len() != model.creep_memory_len() {
             self.state.creep = vec![0.0; model.creep_memory_len()];
         }
+        // Viscoelastic arms: kept while the model keeps them, started relaxed at the
+        // current lengths when switched on, dropped when switched off.
+        if self.state.arm_force.len() != model.arm_len() {
+            self.state.arm_force = vec![0.0; model.arm_len()];
+            self.state.arm_length = if model.zener.is_some() {
+                crate::belt::node::zener::lengths(&self.state.position, model.elements)
+            } else {
+                Vec::new()
+            };
+        }
         self.scratch = Scratch::new(&model);
         self.scratch.contact_detail = self.recording.channels.contact_forces;
         self.inertia = Inertia::physical(&model, &self.state.node_mass);

@@ -83,6 +83,11 @@ pub struct State {
     /// integrators advance it with the rates of the evaluations (`Scratch::creep_rate`):
     /// central differences by one explicit step, RKF45 as part of its state vector.
     pub creep: Vec<f64>,
+    /// Viscoelastic belt (`belt.loss_factor` > 0, `belt::node::zener`): the force of each
+    /// element's Maxwell arm, N. Empty otherwise. Advanced exactly after each step.
+    pub arm_force: Vec<f64>,
+    /// The element lengths the arm forces were advanced to, m (empty with them).
+    pub arm_length: Vec<f64>,
 }
 
 impl State {
@@ -129,6 +134,12 @@ impl State {
             brake_ramp: vec![0.0; model.pulleys.len()],
             drive_memory: vec![DriveMemory::default(); model.pulleys.len()],
             creep: vec![0.0; model.creep_memory_len()],
+            arm_force: vec![0.0; model.arm_len()],
+            arm_length: if model.zener.is_some() {
+                crate::belt::node::zener::lengths(&model.initial_positions, model.elements)
+            } else {
+                Vec::new()
+            },
         }
     }
 

@@ -25,3 +25,4 @@ mod speed_control;
 mod speed_drive;
 mod stops;
 mod wrap_contact;
+mod zener;

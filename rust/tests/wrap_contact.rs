@@ -190,6 +190,7 @@ fn belt_on_its_path_is_in_equilibrium_wherever_its_nodes_are() {
         rest_length: &rest,
         damped: false,
         tension_only: true,
+        arm: &[],
     };
     let body = PulleyBody {
         center: V2::zeros(),

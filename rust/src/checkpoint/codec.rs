@@ -163,6 +163,10 @@ pub(super) fn write_state(w: &mut Writer, s: &State) {
     w.u64(s.rejected_steps);
     // Version 5, last: the friction (creep) memory.
     w.f64s(&s.creep);
+    // Added within version 5 after the friction memory (absent from older files: no
+    // viscoelastic arms): the Zener arms' forces and lengths.
+    w.f64s(&s.arm_force);
+    w.f64s(&s.arm_length);
 }
 
 pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -242,6 +246,11 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         Vec::new()
     };
+    let (arm_force, arm_length) = if r.pos < r.bytes.len() {
+        (r.f64s("arm forces")?, r.f64s("arm lengths")?)
+    } else {
+        (Vec::new(), Vec::new())
+    };
     Ok(State {
         time,
         step,
@@ -265,5 +274,7 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         rejected_steps,
         brake_ramp,
         creep,
+        arm_force,
+        arm_length,
     })
 }

@@ -262,6 +262,8 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
             s.creep.len(),
             m.creep_memory_len(),
         ),
+        ("arm forces", s.arm_force.len(), m.arm_len()),
+        ("arm lengths", s.arm_length.len(), m.arm_len()),
     ];
     for (what, have, want) in sizes {
         if have != want {

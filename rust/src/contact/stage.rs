@@ -2,7 +2,6 @@
 
 use super::nonlinear::NonlinearContact;
 use super::{wrap::ElementLaw, IdlerBody, PulleyBody};
-use crate::model::Stage;
 use crate::pipeline::StageContext;
 
 /// Contact with pulleys, searched in each pulley's window of nodes: nodal penalty contact
@@ -10,13 +9,8 @@ use crate::pipeline::StageContext;
 /// "wrap"`: elements measured along their path round the pulley, with nodal penalty).
 pub fn pulley_contact(cx: &mut StageContext<'_>) {
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
-    let law = ElementLaw {
-        stiffness: &m.axial_stiffness,
-        damping: &m.axial_damping,
-        rest_length: &m.rest_length,
-        damped: effects.damping && m.has_stage(Stage::AxialDamped),
-        tension_only: m.tension_only,
-    };
+    let arm: &[f64] = if effects.damping { &s.arm_force } else { &[] };
+    let law: ElementLaw = m.element_law(effects.damping, arm);
     for (j, p) in m.pulleys.iter().enumerate() {
         // Zero stiffness: the belt passes through this pulley (no contact).
         if p.contact_stiffness == 0.0 {

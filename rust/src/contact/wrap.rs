@@ -157,11 +157,15 @@ pub struct ElementLaw<'a> {
     pub damped: bool,
     /// A slack element carries nothing.
     pub tension_only: bool,
+    /// The viscoelastic arm force of each element, N (`belt::node::zener`); empty: none.
+    pub arm: &'a [f64],
 }
 
 impl ElementLaw<'_> {
     /// Tension of element `e` at length `l` (m) lengthening at `rate` (m/s): the axial
-    /// pass's formula (`belt::node`), so that the chord force it applied is removed exactly.
+    /// pass's formula (`belt::node`), so that the chord force it applied is removed exactly,
+    /// plus the element's viscoelastic arm force (`belt::node::zener`: the one law of the
+    /// Zener element, for the chord and for the wrapped path alike).
     #[inline]
     pub fn tension(&self, e: usize, l: f64, rate: f64) -> f64 {
         let stretch = l - self.rest_length[e];
@@ -169,6 +173,11 @@ impl ElementLaw<'_> {
             self.stiffness[e] * stretch + self.damping[e] * rate
         } else {
             self.stiffness[e] * stretch
+        };
+        // The Zener element: its Maxwell arm's force in parallel (none when empty).
+        let t = match self.arm.get(e) {
+            Some(&sigma) => t + sigma,
+            None => t,
         };
         if self.tension_only && ((self.damped && stretch < 0.0) || t < 0.0) {
             0.0

@@ -170,6 +170,16 @@ impl Simulation {
     /// non-finite quantity unless the nodes were finite and `check` (and the drives'
     /// work) is.
     fn finish_step(&mut self, drift: f64, nodes_finite: bool, check: f64) -> BeltResult<()> {
+        if let Some(z) = &self.model.zener {
+            crate::belt::node::zener::advance_all(
+                z,
+                &self.model.axial_stiffness,
+                self.model.elements,
+                &mut self.state,
+                drift,
+                self.inertia.physical,
+            );
+        }
         let s = &mut self.state;
         // The static relaxation's steps (fictitious masses) are not time: it holds still
         // whatever depends on time (e.g. a rising end pull), as it restores it afterwards.

@@ -131,6 +131,9 @@ pub struct Model {
     /// Smallest idler radius, pulley radius or element length, m: the static relaxation
     /// moves no node by more than a quarter of it per step.
     pub relaxation_move_limit: f64,
+    /// The viscoelastic (Zener) arm of every element (`belt.loss_factor` > 0,
+    /// `belt::node::zener`); `None`: Kelvin-Voigt elements only.
+    pub zener: Option<crate::belt::node::zener::Zener>,
 }
 
 impl Model {
@@ -152,6 +155,33 @@ impl Model {
             } else {
                 0.0
             },
+        }
+    }
+
+    /// Length of the arm state ([`crate::state::State::arm_force`]): one per element with a
+    /// viscoelastic belt, else 0.
+    pub fn arm_len(&self) -> usize {
+        if self.zener.is_some() {
+            self.elements
+        } else {
+            0
+        }
+    }
+
+    /// The element law as the axial pass applies it (dampers if the model has them and
+    /// `damping`), with the arm forces `arm` (N per element; empty: none).
+    pub fn element_law<'a>(
+        &'a self,
+        damping: bool,
+        arm: &'a [f64],
+    ) -> crate::contact::wrap::ElementLaw<'a> {
+        crate::contact::wrap::ElementLaw {
+            stiffness: &self.axial_stiffness,
+            damping: &self.axial_damping,
+            rest_length: &self.rest_length,
+            damped: damping && self.has_stage(Stage::AxialDamped),
+            tension_only: self.tension_only,
+            arm,
         }
     }
 
@@ -282,6 +312,12 @@ impl Model {
             node_stiffness_bound: Vec::new(),
             takeup_stiffness_bound: Vec::new(),
             relaxation_move_limit,
+            zener: (scene.belt.loss_factor > 0.0).then(|| {
+                crate::belt::node::zener::Zener::from_loss_factor(
+                    scene.belt.loss_factor,
+                    scene.belt.loss_frequency,
+                )
+            }),
         };
         let stable = model.stable_step(1.0)?;
         if !(stable.dt >= MIN_TIME_STEP && stable.dt.is_finite()) {

@@ -48,7 +48,9 @@ impl Model {
         for (i, bound) in node_stiffness_bound.iter_mut().enumerate() {
             let prev = (i + n - 1) % n;
             let next = (i + 1) % n;
-            let k_ax = 2.0 * (self.axial_stiffness[prev] + self.axial_stiffness[i]);
+            // A viscoelastic belt's instantaneous stiffness, (1 + r)·k (`belt::node::zener`).
+            let stiffening = self.zener.map_or(1.0, |z| z.stiffening());
+            let k_ax = 2.0 * stiffening * (self.axial_stiffness[prev] + self.axial_stiffness[i]);
             let c_ax = 2.0 * (self.axial_damping[prev] + self.axial_damping[i]);
             let l = 0.5 * (self.rest_length[prev] + self.rest_length[i]);
             let (k_ax, c_ax, k_bend) = if self.is_rigid() {

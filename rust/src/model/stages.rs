@@ -16,6 +16,9 @@ pub enum Stage {
     Axial,
     /// Kelvin-Voigt axial springs with dashpots (thesis eq. 4.40 + 4.56), replaces `Axial`.
     AxialDamped,
+    /// The viscoelastic arms of Zener belt elements (`belt.loss_factor` > 0,
+    /// `crate::belt::node::zener`), added to the axial pass's forces.
+    BeltArms,
     /// Rotational bending springs (thesis eq. 4.47, signs re-derived).
     Bending,
     /// The rigid-body belt's spring-dampers between bodies and the body weights (Kubas
@@ -66,6 +69,7 @@ impl Stage {
             Stage::Loads => "loads",
             Stage::Axial => "axial",
             Stage::AxialDamped => "axial_damped",
+            Stage::BeltArms => "belt_arms",
             Stage::Bending => "bending",
             Stage::RigidChain => "rigid_chain",
             Stage::PulleyContact => "pulley_contact",
@@ -108,6 +112,9 @@ pub(super) fn select(
             } else {
                 Stage::Axial
             });
+            if scene.belt.loss_factor > 0.0 {
+                stages.push(Stage::BeltArms);
+            }
             if scene.belt.bending_stiffness > 0.0 {
                 stages.push(Stage::Bending);
             }

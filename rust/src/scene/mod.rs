@@ -88,6 +88,18 @@ pub struct BeltParams {
     /// torsional spring-dampers). Finite, ≥ 0; not with `damping_ratio` > 0. `None`: the
     /// damping follows `damping_ratio`. Default `None`.
     pub damping_time: Option<f64>,
+    /// Loss factor tan δ of the belt material, dimensionless, in [0, 1]: each element of the
+    /// node belt becomes a Zener (standard linear solid) element, its Kelvin-Voigt spring
+    /// with a Maxwell arm in parallel whose loss factor peaks at this value at
+    /// `loss_frequency` (`belt::node::zener`, docs/wrap-contact.md "A viscoelastic belt").
+    /// `axial_stiffness` stays the relaxed (static) stiffness; the instantaneous one is
+    /// (1 + r)·EA, r = 2η² + 2η√(1 + η²). 0 (default): no arm, Kelvin-Voigt elements only.
+    /// Node belt under central differences only.
+    pub loss_factor: f64,
+    /// Frequency at which the loss factor peaks, Hz, > 0. Default 5 (the band of a long
+    /// conveyor's longitudinal strand modes, 1–20 Hz; tan δ is above half its peak from
+    /// about f/3.7 to 3.7·f).
+    pub loss_frequency: f64,
     /// Unstretched belt length, m. `None`: the length of the initial pulley path, so that
     /// the belt is placed unstretched. Default `None`.
     pub length: Option<f64>,
@@ -140,6 +152,8 @@ impl Default for BeltParams {
             bending_stiffness: 0.0,
             damping_ratio: 0.0,
             damping_time: None,
+            loss_factor: 0.0,
+            loss_frequency: 5.0,
             length: None,
             elements: None,
             max_element_angle: std::f64::consts::PI / 6.0,

@@ -94,6 +94,38 @@ impl Scene {
                 ));
             }
         }
+        let eta = self.belt.loss_factor;
+        if !(eta.is_finite() && (0.0..=1.0).contains(&eta)) {
+            return Err(BeltError::invalid(
+                "belt.loss_factor",
+                eta,
+                "must be a finite loss factor tan δ in [0, 1] (conveyor-belt rubber: about 0.05 to 0.3)",
+            ));
+        }
+        let f = self.belt.loss_frequency;
+        if !(f.is_finite() && f > 0.0) {
+            return Err(BeltError::invalid(
+                "belt.loss_frequency",
+                f,
+                "must be a finite frequency > 0 (Hz)",
+            ));
+        }
+        if eta > 0.0 {
+            if self.belt.formulation == Formulation::RigidBody {
+                return Err(BeltError::invalid(
+                    "belt.loss_factor",
+                    eta,
+                    "the viscoelastic (Zener) belt law is built for the node formulation only; with belt.formulation = \"rigid_body\" use belt.damping_time (Voigt) or belt.damping_ratio",
+                ));
+            }
+            if self.solver.integrator == IntegratorKind::Rkf45 {
+                return Err(BeltError::invalid(
+                    "belt.loss_factor",
+                    eta,
+                    "the viscoelastic arms are advanced exactly over each fixed step of central differences and cannot run under solver.integrator = \"rkf45\"; use solver.integrator = \"central_difference\" or loss_factor = 0",
+                ));
+            }
+        }
         if self.belt.formulation == Formulation::RigidBody {
             if self.initial.is_some() {
                 return Err(BeltError::invalid(

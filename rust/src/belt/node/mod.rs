@@ -7,6 +7,7 @@
 
 mod bending;
 pub mod stage;
+pub mod zener;
 
 pub use bending::{bending, bending_angle, bending_open};
 
