@@ -69,9 +69,20 @@ def net_force(runs, bare, f):
     return (t1 - t2) - (b1 - b2), t1, t2
 
 
-def test_steady_running_node_matches_din_22101(runs, bare):
+RIGID_GAP = ("measured (issue 12): the loaded rigid-body belt's T1 - T2 over its bare run "
+             "is 1.66 kN against DIN's 1.40 kN (+19 %; the node belt's within 5 %) on this 60 m case G, "
+             "and 2.71 kN against 2.39 kN at 100 m; absolute T1, T2 within 1.5 %. Not explained yet: "
+             "the material's inertia and loading on the bodies, or the rigid bodies on the idlers (chord "
+             "contact between mass centres) under the load, are the candidates")
+
+
+@pytest.mark.parametrize("formulation", [
+    "node_kelvin_voigt",
+    pytest.param("rigid_body", marks=pytest.mark.xfail(strict=True, reason=RIGID_GAP)),
+])
+def test_steady_running_matches_din_22101(runs, bare, formulation):
     d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
-    net, t1, t2 = net_force(runs, bare, "node_kelvin_voigt")
+    net, t1, t2 = net_force(runs, bare, formulation)
     # The takeup fixes the tail tension: absolute tensions within 1.5 %, as
     # tests/test_case_g.py holds them (the window mean of the ripple).
     assert t1 == pytest.approx(d1, rel=0.015)
@@ -79,19 +90,6 @@ def test_steady_running_node_matches_din_22101(runs, bare):
     # What resistances and loading add over the bare conveyor is DIN's F_U less the
     # 2 x 10 m outside the probes (1.4 kN here). 5 %: tests/test_case_g.py's 3 % at 150 m,
     # with a F_U 2.5 times smaller here against the same ±10 kN ripple.
-    assert net == pytest.approx(d1 - d2, rel=0.05)
-
-
-@pytest.mark.xfail(strict=True, reason="measured (issue 12): the loaded rigid-body belt's T1 - T2 over its bare run "
-                   "is 1.66 kN against DIN's 1.40 kN (+19 %; the node belt's within 5 %) on this 60 m case G, "
-                   "and 2.71 kN against 2.39 kN at 100 m; absolute T1, T2 within 1.5 %. Not explained yet: "
-                   "the material's inertia and loading on the bodies, or the rigid bodies on the idlers (chord "
-                   "contact between mass centres) under the load, are the candidates")
-def test_steady_running_rigid_matches_din_22101(runs, bare):
-    d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
-    net, t1, t2 = net_force(runs, bare, "rigid_body")
-    assert t1 == pytest.approx(d1, rel=0.015)
-    assert t2 == pytest.approx(d2, rel=0.015)
     assert net == pytest.approx(d1 - d2, rel=0.05)
 
 
