@@ -213,39 +213,57 @@ fn material_on_the_nodes_equals_the_zone_while_the_belt_moves() {
     assert!((z1.end - z0.end).abs() > 0.5, "{z0:?} {z1:?}");
 }
 
-#[test]
-fn a_node_gaining_material_keeps_its_momentum_and_one_losing_it_its_velocity() {
-    let model = Model::compile(&conveyor(80.0, 0.0, 0.0)).unwrap();
+/// The node masses of `model`'s belt with its loads, as placed.
+fn placed_masses(model: &Model) -> Vec<f64> {
+    let edges = loads::initial_edges(&model.loads, &model.initial_positions, model.load_belt());
+    loads::node_masses(&model.mass, &model.loads, &edges, model.load_belt())
+}
+
+/// Move `model`'s loaded belt 0.3 element along itself (node i towards node i+1's place)
+/// with velocities `v` (and, for rigid bodies, `bodies`) through `loads::update`: the node
+/// masses before and after, and the integrator's masses and their inverses after.
+fn move_loaded_belt(
+    model: &Model,
+    v: &mut [V2],
+    bodies: Option<loads::Bodies<'_>>,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
     let belt = model.load_belt();
-    let x0 = model.initial_positions.clone();
-    let mut edges = loads::initial_edges(&model.loads, &x0, belt);
-    let mut node_mass = loads::node_masses(&model.mass, &model.loads, &edges, belt);
+    let x0 = &model.initial_positions;
+    let mut edges = loads::initial_edges(&model.loads, x0, belt);
+    let before = placed_masses(model);
+    let mut node_mass = before.clone();
     let mut mass = node_mass.clone();
     let mut inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
-    // Move the belt 0.3 element along itself (node i towards node i+1's place), with
-    // velocities that differ per node.
     let n = model.nodes;
     let x1: Vec<V2> = (0..n)
         .map(|i| x0[i] + (x0[(i + 1) % n] - x0[i]) * 0.3)
         .collect();
-    let v0: Vec<V2> = (0..n)
-        .map(|i| V2::new(1.0 + 0.01 * i as f64, -0.5))
-        .collect();
-    let mut v = v0.clone();
-    let before = node_mass.clone();
     loads::update(
         &model.loads,
         &model.mass,
         belt,
         &x1,
-        &mut v,
+        v,
         &mut edges,
         &mut MassArrays {
             node_mass: &mut node_mass,
             inertia: Some((&mut mass, &mut inv_mass)),
-            bodies: None,
+            bodies,
         },
     );
+    (before, node_mass, mass, inv_mass)
+}
+
+#[test]
+fn a_node_gaining_material_keeps_its_momentum_and_one_losing_it_its_velocity() {
+    let model = Model::compile(&conveyor(80.0, 0.0, 0.0)).unwrap();
+    // Velocities that differ per node.
+    let n = model.nodes;
+    let v0: Vec<V2> = (0..n)
+        .map(|i| V2::new(1.0 + 0.01 * i as f64, -0.5))
+        .collect();
+    let mut v = v0.clone();
+    let (before, node_mass, mass, inv_mass) = move_loaded_belt(&model, &mut v, None);
     let (mut grew, mut shrank) = (0, 0);
     for i in 0..n {
         if node_mass[i] > before[i] {
@@ -274,12 +292,7 @@ fn a_rigid_body_gaining_material_keeps_its_momenta_and_turns_with_its_inertia() 
     scene.belt.formulation = beltrs::scene::Formulation::RigidBody;
     let model = Model::compile(&scene).unwrap();
     assert!(model.is_rigid() && model.has_stage(Stage::Loads));
-    let belt = model.load_belt();
-    let x0 = model.initial_positions.clone();
-    let mut edges = loads::initial_edges(&model.loads, &x0, belt);
-    let mut node_mass = loads::node_masses(&model.mass, &model.loads, &edges, belt);
-    let mut mass = node_mass.clone();
-    let mut inv_mass: Vec<f64> = mass.iter().map(|m| 1.0 / m).collect();
+    let node_mass = placed_masses(&model);
     // The physical inertia at the start: m·l²/12 of each body with its material.
     let mut inertia = beltrs::integrate::Inertia::physical(&model, &node_mass).body_inertia;
     for i in 0..model.nodes {
@@ -291,31 +304,16 @@ fn a_rigid_body_gaining_material_keeps_its_momenta_and_turns_with_its_inertia() 
         );
     }
     let n = model.nodes;
-    let x1: Vec<V2> = (0..n)
-        .map(|i| x0[i] + (x0[(i + 1) % n] - x0[i]) * 0.3)
-        .collect();
     let mut v = vec![V2::new(1.0, -0.5); n];
     let spin0: Vec<f64> = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
     let mut spin = spin0.clone();
-    let before = node_mass.clone();
     let inertia0 = inertia.clone();
-    loads::update(
-        &model.loads,
-        &model.mass,
-        belt,
-        &x1,
-        &mut v,
-        &mut edges,
-        &mut MassArrays {
-            node_mass: &mut node_mass,
-            inertia: Some((&mut mass, &mut inv_mass)),
-            bodies: Some(loads::Bodies {
-                belt_inertia: &model.body_inertia,
-                inertia: &mut inertia,
-                spin: &mut spin,
-            }),
-        },
-    );
+    let bodies = loads::Bodies {
+        belt_inertia: &model.body_inertia,
+        inertia: &mut inertia,
+        spin: &mut spin,
+    };
+    let (before, node_mass, _, _) = move_loaded_belt(&model, &mut v, Some(bodies));
     let (mut grew, mut shrank) = (0, 0);
     for i in 0..n {
         let l = model.rest_length[i];
