@@ -575,11 +575,9 @@ class Conveyor:
         if self.start not in START_KINDS:
             raise SceneError(f"start = {self.start!r}: must be one of {', '.join(map(repr, START_KINDS))} (the "
                              "design state the scene starts from)")
-        from .scenes import FORMULATIONS
+        from .scenes import check_formulation
 
-        if self.formulation not in FORMULATIONS:
-            raise SceneError(f"formulation = {self.formulation!r}: must be one of "
-                             f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
+        check_formulation(self.formulation)
         if self.formulation == "rigid_body" and self.start != "rest":
             raise SceneError(f"start = {self.start!r}: a running start needs the design-state placement, not "
                              "available with formulation = 'rigid_body' (a rigid body's joint stretch on a drum "

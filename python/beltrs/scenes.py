@@ -41,6 +41,14 @@ __all__ = [
 FORMULATIONS = ("node_kelvin_voigt", "rigid_body")
 
 
+def check_formulation(formulation: str) -> None:
+    """The scene builders' check of a ``formulation`` argument: one of :data:`FORMULATIONS`,
+    else a :class:`~beltrs.SceneError` naming the value and the choices."""
+    if formulation not in FORMULATIONS:
+        raise SceneError(f"formulation = {formulation!r}: must be one of "
+                         f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
+
+
 def hustrulid_loop(
     elements: int = 89,
     *,
@@ -374,9 +382,7 @@ def guo_wang_conveyor(
             from the relaxed placement only (``start=None``).
     """
     p = GUO_WANG
-    if formulation not in FORMULATIONS:
-        raise SceneError(f"formulation = {formulation!r}: must be one of "
-                         f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
+    check_formulation(formulation)
     if formulation == "rigid_body" and start is not None:
         raise SceneError(f"start = {start!r}: the design-state start is not available with formulation = "
                          "'rigid_body' (a rigid body's joint stretch on a drum is not its chord's); use "

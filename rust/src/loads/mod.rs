@@ -196,7 +196,8 @@ fn run_wrap(path: &BeltPath, from: f64, len: f64) -> f64 {
 /// Compile the loads of a scene on the initial path. Errors name the load and the rule: a
 /// point farther than [`LOAD_POINT_TOLERANCE`] from the path, an ambiguous zone (both runs
 /// between the points, or neither, wrap a pulley by more than [`WRAP_TOLERANCE`]), a zone
-/// shorter than one element.
+/// shorter than one element. Every load is validated; one of zero mass is then dropped (it
+/// would only cost a stage and the uniform-mass fast path).
 pub fn compile(loads: &[LoadSpec], path: &BeltPath, element: f64) -> BeltResult<Vec<LoadModel>> {
     let mut out = Vec::with_capacity(loads.len());
     for (i, l) in loads.iter().enumerate() {
@@ -254,6 +255,7 @@ pub fn compile(loads: &[LoadSpec], path: &BeltPath, element: f64) -> BeltResult<
             forward,
         });
     }
+    out.retain(|l| l.mass_per_length > 0.0);
     Ok(out)
 }
 

@@ -528,8 +528,7 @@ pub(super) fn place(
 fn node_masses(scene: &Scene, path: &BeltPath, positions: &[V2], l0: f64) -> BeltResult<Vec<f64>> {
     let n = positions.len();
     let belt_mass = vec![scene.belt.mass_per_length * l0; n];
-    let mut loads = crate::loads::compile(&scene.loads, path, l0)?;
-    loads.retain(|l| l.mass_per_length > 0.0);
+    let loads = crate::loads::compile(&scene.loads, path, l0)?;
     if loads.is_empty() {
         return Ok(belt_mass);
     }

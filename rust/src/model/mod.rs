@@ -224,10 +224,7 @@ impl Model {
         };
         let mut pulleys = pulleys::compile(scene, belt.element_length);
         let idlers = idlers::compile(scene, belt.element_length);
-        // Validated whole; a load of zero mass is then dropped (it would only cost a stage
-        // and the uniform-mass fast path).
-        let mut loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
-        loads.retain(|l| l.mass_per_length > 0.0);
+        let loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
         if scene.pulleys.iter().any(|p| {
             p.drive
                 .as_ref()

@@ -84,6 +84,17 @@ pub fn advance(sigma: f64, k1: f64, tau: f64, dl: f64, dt: f64) -> f64 {
     sigma * a + b * k1 * dl
 }
 
+/// The second node of element `e` of a belt of `n` nodes (a closed belt's last element ends
+/// at node 0; an open belt has fewer elements than nodes and never gets there).
+#[inline]
+fn second(e: usize, n: usize) -> usize {
+    if e + 1 == n {
+        0
+    } else {
+        e + 1
+    }
+}
+
 /// Advance every element's arm over a step of `drift` (s), to the current positions: the
 /// arm forces relax and follow the length change since the last step. In the static
 /// relaxation (`physical` false: fictitious masses, no time) the arms hold no force and
@@ -105,8 +116,7 @@ pub fn advance_all(
     };
     let arms = s.arm_force.iter_mut().zip(s.arm_length.iter_mut());
     for (e, ((force, length), &k)) in arms.zip(stiffness).take(elements).enumerate() {
-        let j = if e + 1 == n { 0 } else { e + 1 };
-        let l = (s.position[j] - s.position[e]).norm();
+        let l = (s.position[second(e, n)] - s.position[e]).norm();
         *force = a * *force + b * k * (l - *length);
         *length = l;
     }
@@ -116,7 +126,7 @@ pub fn advance_all(
 pub fn lengths(position: &[nalgebra::Vector2<f64>], elements: usize) -> Vec<f64> {
     let n = position.len();
     (0..elements)
-        .map(|e| (position[if e + 1 == n { 0 } else { e + 1 }] - position[e]).norm())
+        .map(|e| (position[second(e, n)] - position[e]).norm())
         .collect()
 }
 
@@ -133,7 +143,7 @@ pub fn arm_stage(cx: &mut StageContext<'_>) {
     let voigt = m.element_law(true, &[]);
     let (x, v, n) = (&s.position, &s.velocity, s.position.len());
     for e in 0..m.elements {
-        let j = if e + 1 == n { 0 } else { e + 1 };
+        let j = second(e, n);
         let d = x[j] - x[e];
         let l = d.norm();
         let rate = d.dot(&(v[j] - v[e])) / l;
