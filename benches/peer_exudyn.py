@@ -189,7 +189,7 @@ def run_beltrs(code: str, setting: str, make: Callable[[], object]) -> Rung:
     except beltrs.BeltrsError:
         pass  # the relaxation can stall near 1e-4 (docs/performance.md); the belt is settled
     t_run = time.perf_counter()
-    res = sim.run(DURATION, record_interval=SAMPLE, node_velocity=False)
+    res = sim.run(DURATION, record_interval=SAMPLE, node_velocity=False, progress=False)
     wall_run = time.perf_counter() - t_run
     x = res.node_position
     # Midpoints of consecutive points (nodes, or the rigid bodies' mass centres next to a joint).
@@ -344,8 +344,8 @@ def table(rungs: list[Rung]) -> str:
     for r in rungs:
         finest[r.code] = r  # the last rung of each code's first ladder is its finest mesh
     lines = [
-        "| code | setting | wall (s) | walls (s) | run (s) | T1 (N) | T2 (N) | T1 - T2 (N) | error (N) | slip (%) "
-        "| creep theory (%) | slip error (%) | vs own finest (%) |",
+        "| code | setting | wall (s) | walls (s) | run, first (s) | T1 (N) | T2 (N) | T1 - T2 (N) | error (N) "
+        "| slip (%) | creep theory (%) | slip error (%) | vs own finest (%) |",
         "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rungs:
