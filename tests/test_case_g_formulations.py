@@ -84,8 +84,8 @@ RIGID_GAP = ("measured (issue 12, Hann-weighted window): the loaded rigid-body b
              "resistance and the loading m'v^2 are DIN's; both models lose more at the rolls under the load than "
              "DIN's f holds (belt-roll slip of chattering rolls, roll contact damping; frictionless rolls: node "
              "-3.4 %, rigid +2.9 %); the rigid bodies' further 85 N over the node belt is their slip on the tail "
-             "drum and the rolls, driven by the stronger chordal ripple of their circumscribed polygon on the "
-             "drums (pulley contact at the mass centres)")
+             "drum and the rolls, most likely driven by the stronger chordal ripple of their circumscribed "
+             "polygon on the drums (pulley contact at the mass centres)")
 
 
 @pytest.mark.parametrize("formulation", [
