@@ -120,9 +120,13 @@ def test_bad_formulation_input_is_refused_by_name():
         guo_wang_conveyor(length=LENGTH, formulation="rigid")
     with pytest.raises(beltrs.SceneError, match="start = 'rest'.*rigid_body.*start=None"):
         guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
-    # The engine refuses a design start under the rigid-body belt, naming [initial].
+    # The engine refuses a design start under the rigid-body belt, naming [initial] (with
+    # nodal contact: the node belt's wrap contact, the builder's, is refused by name first).
     scene = guo_wang_conveyor(length=LENGTH, start="rest")
     rigid = replace(scene, belt=replace(scene.belt, formulation="rigid_body"))
+    with pytest.raises(beltrs.SceneError, match="pulley_contact"):
+        beltrs.Simulation(rigid)
+    rigid = replace(rigid, belt=replace(rigid.belt, pulley_contact="nodes"))
     with pytest.raises(beltrs.SceneError, match="initial"):
         beltrs.Simulation(rigid)
     # The builder: a known formulation, and no running start with rigid bodies.
@@ -134,6 +138,7 @@ def test_bad_formulation_input_is_refused_by_name():
         Conveyor(formulation="rigid_body", start="running").validate()
     scene = Conveyor(formulation="rigid_body", capacity=400.0).scene()
     assert scene.belt.formulation == "rigid_body" and scene.initial is None and scene.recording.stabilise
+    assert scene.belt.pulley_contact == "nodes"  # the rigid bodies touch the drums at their centres
     assert scene.loads and scene.loads[0].mass_per_length > 0
     # From TOML: the builder's field, and a scene file's loads on a rigid-body belt.
     assert beltrs.conveyor.loads('[conveyor]\nformulation = "rigid_body"\n').formulation == "rigid_body"

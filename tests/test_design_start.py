@@ -326,7 +326,7 @@ def test_builder_places_the_spans_in_their_sag():
     # the takeup settles), where the straight placement's spans sink by all of it.
     c = Conveyor(profile=[(0, 0), (60, 0)], belt="ST1250", capacity=500.0, speed=2.0)
     scene = c.scene()
-    assert scene.initial.sag is False  # opt-in for now (docs/design-start.md)
+    assert scene.initial.sag is True  # the builders' default (docs/design-start.md)
     q = (c.belt_mass + c.material_mass) * 9.81
     a = c.carry.pitch
     spans = range(15, 33)  # 18.6–40.2 m: loaded, away from the drums

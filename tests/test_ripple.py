@@ -1,8 +1,8 @@
 """True peaks and smooth drives (issue 12): the raw tight-side tension peak within 3 % of
 the peak below 2 Hz, and the steady drive torque free of ripple (under 5 % of its mean), on
-case G (shortened) and on a 300 m builder conveyor, with wrap contact
-(``belt.pulley_contact = "wrap"``; every other setting the scene's default). Wrap contact is
-not yet the default: docs/wrap-contact.md says why.
+case G (shortened) and on a 300 m builder conveyor, at the builders' default settings: wrap
+contact (``belt.pulley_contact = "wrap"``) and, from a design start, the spans placed in
+their sag (``initial.sag``), the conveyor builders' defaults (docs/wrap-contact.md).
 
 The mechanism (docs/case-g.md, "The chordal ripple"): with nodal contact the belt round a
 held drum was a chain of straight links on a sprocket; its strand left from the last node
@@ -49,7 +49,9 @@ def wrapped(scene: beltrs.Scene) -> beltrs.Scene:
 def case_g():
     length = 150.0
     curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
-    sim = beltrs.Simulation(wrapped(guo_wang_conveyor(curve, length=length)))
+    scene = guo_wang_conveyor(curve, length=length)
+    assert scene.belt.pulley_contact == "wrap"  # the builder's default
+    sim = beltrs.Simulation(scene)
     sim.stabilise(tolerance=1e-5, max_steps=400_000)
     data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + STEADY)
     return ripple_figures(data, WINDOW)
@@ -57,12 +59,12 @@ def case_g():
 
 @pytest.fixture(scope="module")
 def conveyor():
-    # The builder's design start (at rest, no relaxation) with its spans placed in their
-    # sag (initial.sag, opt-in: docs/design-start.md). From the straight design placement
-    # this read +4.9 %: the spans sinking into their sag during the first second rang the
-    # strands (raw 57.8 kN at 4.0 s against 55.1 kN below 2 Hz at 1.2 s).
-    scene = wrapped(conveyor_300(ramp=RAMP).scene())
-    scene = replace(scene, initial=replace(scene.initial, sag=True))
+    # The builder's design start (at rest, no relaxation), its spans placed in their sag
+    # (initial.sag, the builders' default: docs/design-start.md). From the straight design
+    # placement this read +4.9 %: the spans sinking into their sag during the first second
+    # rang the strands (raw 57.8 kN at 4.0 s against 55.1 kN below 2 Hz at 1.2 s).
+    scene = conveyor_300(ramp=RAMP).scene()
+    assert scene.belt.pulley_contact == "wrap" and scene.initial.sag  # the builder's defaults
     sim = beltrs.Simulation(scene)
     data = measure(sim, (290.0, 0.0), "head", RAMP + STEADY)
     return ripple_figures(data, WINDOW)

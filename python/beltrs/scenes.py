@@ -49,6 +49,15 @@ def check_formulation(formulation: str) -> None:
                          f"{', '.join(map(repr, FORMULATIONS))} (the belt model)")
 
 
+def conveyor_contact(formulation: str) -> str:
+    """The conveyor builders' belt–pulley contact (:attr:`beltrs.Belt.pulley_contact`):
+    ``"wrap"`` for the node belt (the belt measured along its path round the drums: no chord
+    polygon, so no chordal tension ripple on a held drum and no node-phase tension step at
+    rest; docs/wrap-contact.md), ``"nodes"`` for the rigid-body belt, whose bodies touch the
+    pulleys at their mass centres (the engine refuses wrap contact with it)."""
+    return "nodes" if formulation == "rigid_body" else "wrap"
+
+
 def hustrulid_loop(
     elements: int = 89,
     *,
@@ -335,7 +344,9 @@ def guo_wang_conveyor(
       1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
       critical, elements of ``element_length`` m (default 0.2: a sixth of the 1.2 m carry
       pitch, so the polygonal belt does not rattle on the rolls, docs/stability.md, and
-      30 degrees of wrap per element on the 0.8 m drum).
+      30 degrees of wrap per element on the 0.8 m drum); wrap contact on the drums
+      (``belt.pulley_contact = "wrap"``: no chordal ripple on the held drum,
+      docs/wrap-contact.md; nodal contact for the rigid-body belt).
     - Layout: tail pulley ("tail", radius 0.4 m, 500 kg) at (0, 0) on a horizontal
       gravity takeup pulled in -x with 2 x ``takeup_tension`` (default 50 kN per strand, a
       10.2 t counterweight over a sheave), chosen so that the slack side keeps the head
@@ -374,7 +385,8 @@ def guo_wang_conveyor(
             ``"running"`` (DIN 22101's steady-running tensions, belt and pulleys at
             2 m/s, the start curve already ended) or None (default: the belt placed
             unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
-            run).
+            run). A design start places the spans on rolls in their static sag
+            (``initial.sag``).
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Guo & Wang's own rigid finite elements: bodies of the same length, mass
@@ -420,6 +432,7 @@ def guo_wang_conveyor(
         damping_ratio=0.05,
         elements=elements if elements is not None else math.ceil(path / element_length),
         formulation=formulation,
+        pulley_contact=conveyor_contact(formulation),
     )
     loads = [Load(mass_per_length=material, start=(5.0, r), end=(length, r))] if material > 0 else []
     initial = None
@@ -491,7 +504,8 @@ def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: 
         design_start.Wrap("head", path_in=total - length, path_out=wrap + length),
         design_start.Run(0.0, span, path_start=total - r, path_end=total - length + r),
     ]
-    return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0)
+    return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0,
+                                sag=True)
 
 
 @dataclass(frozen=True)

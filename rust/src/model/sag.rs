@@ -17,7 +17,7 @@
 //! idler contact does (`contact::idler_contact`); on an element tilted by φ the contact
 //! point lies R·sin φ downhill of the roll's top and R·(1 − cos φ) below it (R the roll's
 //! radius), with φ from the last solve (a fixed point). This is linear and tridiagonal in y; the
-//! nodes just outside the line (on a drum or a curve) are held at offset 0. A roll that
+//! line's ends (its tangent points on a drum, or where a curve begins) are held at offset 0. A roll that
 //! would pull (δ < 0) is dropped and the system solved again. Between two rolls the nodes
 //! then lie on the funicular polygon of the node loads: on the parabola q·x·(a − x)/(2H)
 //! through the contact points to within the chord of one element next to each roll, and
@@ -153,20 +153,17 @@ pub(super) fn shape(
         if m == 0 {
             continue;
         }
-        // Abscissae with the fixed neighbours (offset 0) at both ends.
+        // Abscissae with the line's two ends as the fixed supports (offset 0). The belt
+        // leaves a drum at its tangent point: the node beyond it lies on the wrap, below
+        // the line's extension (by d²/2r, d its distance past the end), so taking that node
+        // at offset 0 on the extension would pin the span 0.1–0.2 m too far out and sag
+        // the last node before the drum into it (measured: 0.8 mm inside a 0.315 m drum,
+        // 10 mm before its top, an 80 kN penalty kick at the first step). The knots of
+        // the shape hold offset 0 at the ends for the same reason.
         let xs: Vec<f64> = std::iter::once(0.0)
             .chain(idx.iter().map(|&i| at[i] - from))
             .chain(std::iter::once(len))
             .collect();
-        let xs = {
-            // the neighbours sit off the line: at their distance along the path
-            let mut xs = xs;
-            let before = at[(idx[0] + n - 1) % n];
-            let after = at[(idx[m - 1] + 1) % n];
-            xs[0] = -((from - before).rem_euclid(path.length));
-            xs[m + 1] = len + (after - to).rem_euclid(path.length);
-            xs
-        };
         // Element tensions between consecutive points (m + 1 elements).
         let h: Vec<f64> = (0..=m)
             .map(|e| tension(from + 0.5 * (xs[e] + xs[e + 1])))
