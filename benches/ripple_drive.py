@@ -78,6 +78,9 @@ VARIANTS = {
     "idler_damp4": lambda s: replace(s, idlers=[replace(i, contact_damping=4 * i.contact_damping) for i in s.idlers]),
     "no_gravity": lambda s: replace(s, gravity=0.0),
     "no_resistance": lambda s: replace(s, idlers=[replace(i, resistance=0.0) for i in s.idlers]),
+    "big_rolls": lambda s: replace(s, idlers=[replace(i, radius=3 * i.radius, center=(i.center[0], i.center[1] - 2 * i.radius))
+                                              for i in s.idlers]),
+    "no_roll_friction": lambda s: replace(s, idlers=[replace(i, friction=None) for i in s.idlers]),
     "zener": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1]),
     "zener_wrap": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1], pulley_contact="wrap"),
 }
@@ -97,17 +100,25 @@ def main(argv=None) -> int:
     ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
     ap.add_argument("--pi", action="store_true", help="PI speed controller (default gains) on the head drive")
     ap.add_argument("--motor-inertia", type=float, default=0.0, help="kg*m^2 at the motor shaft (1500 rpm)")
+    ap.add_argument("--speed", type=float, default=2.0, help="belt speed, m/s")
+    ap.add_argument("--sag", action="store_true", help="place the spans in their sag (initial.sag)")
+    ap.add_argument("--wrap", action="store_true", help='wrap contact (belt.pulley_contact = "wrap") on top')
     ap.add_argument("--loss-factor", type=float, default=0.1, help="belt.loss_factor of the zener variants")
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="belt.loss_frequency, Hz")
     args = ap.parse_args(argv)
     LOSS[:] = [args.loss_factor, args.loss_frequency]
     kw = {} if args.element is None else {"element_length": args.element}
-    drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0),
+    drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=args.speed, ramp=4.0),
                       inertia=args.motor_inertia, controller=beltrs.SpeedController() if args.pi else None)
     for name in args.variants:
-        c = Conveyor(profile=[(0.0, 0.0), (args.length, 0.0)], belt="ST1250", capacity=500.0, speed=2.0,
+        c = Conveyor(profile=[(0.0, 0.0), (args.length, 0.0)], belt="ST1250", capacity=500.0, speed=args.speed,
                      start="running", drives=[drive], **kw)
-        sim = beltrs.Simulation(VARIANTS[name](c.scene()))
+        scene = VARIANTS[name](c.scene())
+        if args.sag:
+            scene = replace(scene, initial=replace(scene.initial, sag=True))
+        if args.wrap:
+            scene = belt(scene, pulley_contact="wrap")
+        sim = beltrs.Simulation(scene)
         wall = time.perf_counter()
         res = sim.run(args.duration, record_interval=args.interval, tension=False, node_position=False,
                       node_velocity=False, progress=False)
@@ -115,6 +126,7 @@ def main(argv=None) -> int:
         j = res.pulley_names.index("head")
         out = {"variant": name, "loss": LOSS if name.startswith("zener") else None,
                "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
+               "speed": args.speed, "sag": args.sag, "wrap": args.wrap,
                "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
                "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}

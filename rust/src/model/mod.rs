@@ -79,6 +79,9 @@ pub struct Model {
     /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
     /// false: nodal contact.
     pub wrap_contact: bool,
+    /// Wrap contact with the idler rolls too (`contact::roll_wrap`): wrap contact on a node
+    /// belt.
+    pub roll_wrap: bool,
     /// The belt formulation. With [`Formulation::RigidBody`] the "nodes" are the bodies'
     /// mass centres and the "elements" the joints between them (joint e joins body e and
     /// e+1): `mass`, `rest_length` (body length), `axial_stiffness` and `axial_damping`
@@ -278,6 +281,8 @@ impl Model {
             uniform,
             tension_only: scene.belt.tension_only,
             wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
+            roll_wrap: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap
+                && formulation != Formulation::RigidBody,
             formulation,
             gravity: scene.gravity,
             dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()).with_bodies(
