@@ -58,6 +58,17 @@ def figures(t: np.ndarray, x: np.ndarray, window: float) -> dict:
     }
 
 
+def roll_figures(t: np.ndarray, force: np.ndarray, window: float) -> dict:
+    """The rolls' normal forces over the last ``window`` s: the largest of all, N, and the
+    median over the rolls of each roll's largest over its mean and of its standard
+    deviation, N."""
+    w = t >= t[-1] - window
+    f = force[w]
+    mean = np.maximum(f.mean(axis=0), 1e-9)
+    return {"max": round(float(f.max()), 1), "median_peak_over_mean": round(float(np.median(f.max(axis=0) / mean)), 3),
+            "median_std": round(float(np.median(f.std(axis=0))), 1)}
+
+
 def belt(s, **kw):
     return replace(s, belt=replace(s.belt, **kw))
 
@@ -103,6 +114,7 @@ def main(argv=None) -> int:
     ap.add_argument("--speed", type=float, default=2.0, help="belt speed, m/s")
     ap.add_argument("--sag", action="store_true", help="place the spans in their sag (initial.sag)")
     ap.add_argument("--wrap", action="store_true", help='wrap contact (belt.pulley_contact = "wrap") on top')
+    ap.add_argument("--roll-wrap", action="store_true", help='wrap contact on the rolls (belt.idler_contact = "wrap")')
     ap.add_argument("--loss-factor", type=float, default=0.1, help="belt.loss_factor of the zener variants")
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="belt.loss_frequency, Hz")
     args = ap.parse_args(argv)
@@ -118,6 +130,8 @@ def main(argv=None) -> int:
             scene = replace(scene, initial=replace(scene.initial, sag=True))
         if args.wrap:
             scene = belt(scene, pulley_contact="wrap")
+        if args.roll_wrap:
+            scene = belt(scene, idler_contact="wrap")
         sim = beltrs.Simulation(scene)
         wall = time.perf_counter()
         res = sim.run(args.duration, record_interval=args.interval, tension=False, node_position=False,
@@ -126,10 +140,11 @@ def main(argv=None) -> int:
         j = res.pulley_names.index("head")
         out = {"variant": name, "loss": LOSS if name.startswith("zener") else None,
                "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
-               "speed": args.speed, "sag": args.sag, "wrap": args.wrap,
+               "speed": args.speed, "sag": args.sag, "wrap": args.wrap, "roll_wrap": args.roll_wrap,
                "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
-               "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}
+               "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window),
+               "roll_force": roll_figures(res.time, res.idler_force, args.window)}
         print(json.dumps(out), flush=True)
     return 0
 

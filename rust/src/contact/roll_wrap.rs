@@ -1,7 +1,7 @@
 //! Wrap contact on idler rolls: an element whose straight segment cuts a roll's circle is
 //! measured along the belt's path over the roll (tangent, arc, tangent), as [`super::wrap`]
-//! measures an element on a pulley; `belt.pulley_contact = "wrap"` turns it on for the rolls
-//! too (node belt only).
+//! measures an element on a pulley: `belt.idler_contact = "wrap"` (node belt, closed loop;
+//! opt-in).
 //!
 //! Why (issue 12, docs/wrap-contact.md "The rolls' chordal action"). With centre-line
 //! segment contact a straight element resting on a roll under its middle holds its two nodes
@@ -93,6 +93,24 @@ pub fn idler_wrap_contact(
             force,
         );
         tension[k] = t;
+        // The roll's contact damping on a node moving towards the roll across its tangent
+        // line (never pulling): zero in steady running, where the nodes move along the path.
+        let mut on_roll = on_roll;
+        for (i, grad, tangent) in [(k, g.grad_p, g.tangent_p), (j, g.grad_q, g.tangent_q)] {
+            if tangent <= 0.0 || body.damping == 0.0 {
+                continue;
+            }
+            let mut u = V2::new(-grad.y, grad.x);
+            if u.dot(&(x[i] - body.center)) < 0.0 {
+                u = -u;
+            }
+            let approach = -v[i].dot(&u);
+            if approach > 0.0 {
+                let f = u * (body.damping * approach);
+                force[i] += f;
+                on_roll -= f;
+            }
+        }
         total -= on_roll;
         let w = on_roll.norm();
         weight += w;

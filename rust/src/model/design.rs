@@ -356,9 +356,10 @@ pub(super) fn place(
     // (`contact::wrap`): nodes at equal arc length there, not sunk by a penetration.
     let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     let sink_wraps: &[ContactWrap] = if wrap_contact { &[] } else { &wraps };
-    // With wrap contact on a node belt the rolls too (`contact::roll_wrap`): the belt bends
-    // over each roll at the roll, and an element over one is as long as its path there.
-    let roll_wrap = wrap_contact && belt.formulation != crate::scene::Formulation::RigidBody;
+    // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
+    // the belt bends over each roll at the roll, and an element over one is as long as its
+    // path there.
+    let roll_wrap = belt.idler_contact == crate::scene::IdlerContactKind::Wrap;
     // The sag of the spans on rolls (`super::sag`), updated between passes.
     let sag = std::cell::RefCell::new(super::sag::SagShape::default());
     let point = |s: f64| sag.borrow().point(path, s);
