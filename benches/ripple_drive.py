@@ -15,11 +15,19 @@ stick-slip between mu_s and mu_k), ``creep`` (creep friction on the drums), ``wr
 (``belt.pulley_contact = "wrap"``), ``tau1e4`` / ``tau3e4`` / ``tau1e3`` (Voigt
 ``damping_time`` instead of the element damping ratio), ``no_idler_damp`` / ``idler_damp4``
 (roll contact damping 0 / 4x), ``no_gravity``, ``no_resistance`` (DIN f = 0 on the rolls),
-``zener`` / ``zener_wrap`` (a viscoelastic belt, ``belt.loss_factor`` = ``--loss-factor``
+``big_rolls`` (every roll 3x its radius, its top kept), ``no_roll_friction`` (no belt
+friction on the rolls), ``zener`` / ``zener_wrap`` (a viscoelastic belt, ``belt.loss_factor`` = ``--loss-factor``
 peaking at ``--loss-frequency`` Hz, on top of the builder's element damping; with nodal or
 wrap contact).
 
     python benches/ripple_drive.py zener zener_wrap --loss-factor 0.1 --loss-frequency 5
+
+Flags on top of any variant: ``--wrap`` (wrap contact on the drums), ``--roll-wrap`` (wrap
+contact on the rolls, ``belt.idler_contact``), ``--sag`` (spans placed in their sag),
+``--speed``. Also printed: the rolls' normal forces over the window (largest, and the
+median over the rolls of each one's peak over its mean and of its standard deviation).
+
+    python benches/ripple_drive.py base --wrap --sag --roll-wrap
 """
 
 from __future__ import annotations
@@ -89,8 +97,8 @@ VARIANTS = {
     "idler_damp4": lambda s: replace(s, idlers=[replace(i, contact_damping=4 * i.contact_damping) for i in s.idlers]),
     "no_gravity": lambda s: replace(s, gravity=0.0),
     "no_resistance": lambda s: replace(s, idlers=[replace(i, resistance=0.0) for i in s.idlers]),
-    "big_rolls": lambda s: replace(s, idlers=[replace(i, radius=3 * i.radius, center=(i.center[0], i.center[1] - 2 * i.radius))
-                                              for i in s.idlers]),
+    "big_rolls": lambda s: replace(s, idlers=[
+        replace(i, radius=3 * i.radius, center=(i.center[0], i.center[1] - 2 * i.radius)) for i in s.idlers]),
     "no_roll_friction": lambda s: replace(s, idlers=[replace(i, friction=None) for i in s.idlers]),
     "zener": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1]),
     "zener_wrap": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1], pulley_contact="wrap"),

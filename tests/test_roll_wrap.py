@@ -13,8 +13,9 @@ from beltrs.conveyor import Conveyor, DriveSpec
 def conveyor(idler_contact: str = "wrap", length: float = 30.0) -> beltrs.Scene:
     """A level builder conveyor at steady running (ST1250, 500 t/h at 2 m/s), wrap contact
     on the drums, spans placed in their sag."""
+    curve = beltrs.StartCurve("harrison", speed=2.0, ramp=4.0)
     c = Conveyor(profile=[(0.0, 0.0), (length, 0.0)], belt="ST1250", capacity=500.0, speed=2.0,
-                 start="running", drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0))])
+                 start="running", drives=[DriveSpec("head", start_curve=curve)])
     s = c.scene()
     return replace(s, belt=replace(s.belt, pulley_contact="wrap", idler_contact=idler_contact),
                    initial=replace(s.initial, sag=True))

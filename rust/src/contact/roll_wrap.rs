@@ -77,6 +77,9 @@ pub fn idler_wrap_contact(
             }
             continue;
         }
+        if dist >= body.radius {
+            continue; // clear of the roll, both nodes too
+        }
         let Some(g) = wrap::wrap(x[k], x[j], body.center, body.radius) else {
             continue;
         };
