@@ -15,11 +15,19 @@ stick-slip between mu_s and mu_k), ``creep`` (creep friction on the drums), ``wr
 (``belt.pulley_contact = "wrap"``), ``tau1e4`` / ``tau3e4`` / ``tau1e3`` (Voigt
 ``damping_time`` instead of the element damping ratio), ``no_idler_damp`` / ``idler_damp4``
 (roll contact damping 0 / 4x), ``no_gravity``, ``no_resistance`` (DIN f = 0 on the rolls),
-``zener`` / ``zener_wrap`` (a viscoelastic belt, ``belt.loss_factor`` = ``--loss-factor``
+``big_rolls`` (every roll 3x its radius, its top kept), ``no_roll_friction`` (no belt
+friction on the rolls), ``zener`` / ``zener_wrap`` (a viscoelastic belt, ``belt.loss_factor`` = ``--loss-factor``
 peaking at ``--loss-frequency`` Hz, on top of the builder's element damping; with nodal or
 wrap contact).
 
     python benches/ripple_drive.py zener zener_wrap --loss-factor 0.1 --loss-frequency 5
+
+Flags on top of any variant: ``--wrap`` (wrap contact on the drums), ``--roll-wrap`` (wrap
+contact on the rolls, ``belt.idler_contact``), ``--sag`` (spans placed in their sag),
+``--speed``. Also printed: the rolls' normal forces over the window (largest, and the
+median over the rolls of each one's peak over its mean and of its standard deviation).
+
+    python benches/ripple_drive.py base --wrap --sag --roll-wrap
 """
 
 from __future__ import annotations
@@ -58,6 +66,17 @@ def figures(t: np.ndarray, x: np.ndarray, window: float) -> dict:
     }
 
 
+def roll_figures(t: np.ndarray, force: np.ndarray, window: float) -> dict:
+    """The rolls' normal forces over the last ``window`` s: the largest of all, N, and the
+    median over the rolls of each roll's largest over its mean and of its standard
+    deviation, N."""
+    w = t >= t[-1] - window
+    f = force[w]
+    mean = np.maximum(f.mean(axis=0), 1e-9)
+    return {"max": round(float(f.max()), 1), "median_peak_over_mean": round(float(np.median(f.max(axis=0) / mean)), 3),
+            "median_std": round(float(np.median(f.std(axis=0))), 1)}
+
+
 def belt(s, **kw):
     return replace(s, belt=replace(s.belt, **kw))
 
@@ -78,6 +97,9 @@ VARIANTS = {
     "idler_damp4": lambda s: replace(s, idlers=[replace(i, contact_damping=4 * i.contact_damping) for i in s.idlers]),
     "no_gravity": lambda s: replace(s, gravity=0.0),
     "no_resistance": lambda s: replace(s, idlers=[replace(i, resistance=0.0) for i in s.idlers]),
+    "big_rolls": lambda s: replace(s, idlers=[
+        replace(i, radius=3 * i.radius, center=(i.center[0], i.center[1] - 2 * i.radius)) for i in s.idlers]),
+    "no_roll_friction": lambda s: replace(s, idlers=[replace(i, friction=None) for i in s.idlers]),
     "zener": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1]),
     "zener_wrap": lambda s: belt(s, loss_factor=LOSS[0], loss_frequency=LOSS[1], pulley_contact="wrap"),
 }
@@ -97,17 +119,28 @@ def main(argv=None) -> int:
     ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
     ap.add_argument("--pi", action="store_true", help="PI speed controller (default gains) on the head drive")
     ap.add_argument("--motor-inertia", type=float, default=0.0, help="kg*m^2 at the motor shaft (1500 rpm)")
+    ap.add_argument("--speed", type=float, default=2.0, help="belt speed, m/s")
+    ap.add_argument("--sag", action="store_true", help="place the spans in their sag (initial.sag)")
+    ap.add_argument("--wrap", action="store_true", help='wrap contact (belt.pulley_contact = "wrap") on top')
+    ap.add_argument("--roll-wrap", action="store_true", help='wrap contact on the rolls (belt.idler_contact = "wrap")')
     ap.add_argument("--loss-factor", type=float, default=0.1, help="belt.loss_factor of the zener variants")
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="belt.loss_frequency, Hz")
     args = ap.parse_args(argv)
     LOSS[:] = [args.loss_factor, args.loss_frequency]
     kw = {} if args.element is None else {"element_length": args.element}
-    drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=2.0, ramp=4.0),
+    drive = DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=args.speed, ramp=4.0),
                       inertia=args.motor_inertia, controller=beltrs.SpeedController() if args.pi else None)
     for name in args.variants:
-        c = Conveyor(profile=[(0.0, 0.0), (args.length, 0.0)], belt="ST1250", capacity=500.0, speed=2.0,
+        c = Conveyor(profile=[(0.0, 0.0), (args.length, 0.0)], belt="ST1250", capacity=500.0, speed=args.speed,
                      start="running", drives=[drive], **kw)
-        sim = beltrs.Simulation(VARIANTS[name](c.scene()))
+        scene = VARIANTS[name](c.scene())
+        if args.sag:
+            scene = replace(scene, initial=replace(scene.initial, sag=True))
+        if args.wrap:
+            scene = belt(scene, pulley_contact="wrap")
+        if args.roll_wrap:
+            scene = belt(scene, idler_contact="wrap")
+        sim = beltrs.Simulation(scene)
         wall = time.perf_counter()
         res = sim.run(args.duration, record_interval=args.interval, tension=False, node_position=False,
                       node_velocity=False, progress=False)
@@ -115,9 +148,11 @@ def main(argv=None) -> int:
         j = res.pulley_names.index("head")
         out = {"variant": name, "loss": LOSS if name.startswith("zener") else None,
                "pi": args.pi, "motor_inertia": args.motor_inertia, "element": args.element,
+               "speed": args.speed, "sag": args.sag, "wrap": args.wrap, "roll_wrap": args.roll_wrap,
                "nodes": sim.nodes, "dt_us": round(sim.dt * 1e6, 2), "wall_s": round(wall, 1),
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
-               "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window)}
+               "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window),
+               "roll_force": roll_figures(res.time, res.idler_force, args.window)}
         print(json.dumps(out), flush=True)
     return 0
 

@@ -825,6 +825,14 @@ class Belt(_Table):
             docs/wrap-contact.md). Default "nodes" (the conveyor builders,
             :class:`beltrs.conveyor.Conveyor` and :func:`beltrs.scenes.guo_wang_conveyor`,
             set "wrap" for the node belt); an open belt takes "nodes" only.
+        idler_contact: how the belt meets the idler rolls: ``"segment"`` (Hustrulid's
+            centre-line penalty contact of the straight elements, thesis eq. 4.95-4.102; a
+            straight element over a roll lifts its nodes off the belt's path when the roll is
+            under its middle: the rolls' chordal action at the node-passing frequency) or
+            ``"wrap"`` (an element over a roll measured along its path over it, tangents and
+            arc: the nodes on the belt's path at every phase; docs/wrap-contact.md, "The
+            rolls' chordal action"). Default "segment"; ``"wrap"`` needs the node belt and a
+            closed loop. With ``initial.sag`` the spans are placed bent over each roll.
         start: the first end of an open belt (:class:`BeltEnd`); give ``start`` and
             ``end`` together. Default None: a closed loop. An open belt takes no design
             start (``Scene.initial``).
@@ -844,6 +852,7 @@ class Belt(_Table):
     formulation: str
     max_placement_strain: float
     pulley_contact: str
+    idler_contact: str
     damping_time: Optional[float]
     loss_factor: float
     loss_frequency: float

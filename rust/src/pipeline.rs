@@ -85,6 +85,12 @@ pub struct Scratch {
     pub held: Vec<Option<f64>>,
     /// Contact of each idler.
     pub idler_contacts: Vec<IdlerContact>,
+    /// Wrap contact on the rolls (`contact::roll_wrap`): per element, the stamp of the last
+    /// evaluation that measured it along a wrapped path (a pulley's or a roll's). Empty
+    /// until used.
+    pub wrap_mark: Vec<u64>,
+    /// This evaluation's stamp in `wrap_mark` (counts the wrap-contact idler evaluations).
+    pub wrap_stamp: u64,
     /// Friction torque on each idler, N·m.
     pub idler_torque: Vec<f64>,
     /// Running-resistance force of each idler on the belt, N, along the contact tangent
@@ -137,6 +143,8 @@ impl Scratch {
             bearing_torque: vec![0.0; p],
             held: vec![None; p],
             idler_contacts: vec![IdlerContact::default(); q],
+            wrap_mark: Vec::new(),
+            wrap_stamp: 0,
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
             control: vec![ControlOutput::default(); p],

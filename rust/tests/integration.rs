@@ -19,6 +19,7 @@ mod recorder;
 mod recording_params;
 mod rigid_body;
 mod rkf45;
+mod roll_wrap;
 mod run_contract;
 mod scene_schema;
 mod speed_control;

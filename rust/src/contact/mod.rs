@@ -7,6 +7,7 @@
 //! thesis) acts on the normal approach speed and never pulls the belt onto the body.
 
 pub mod nonlinear;
+pub mod roll_wrap;
 pub mod stage;
 pub mod wrap;
 
@@ -337,6 +338,9 @@ pub struct IdlerContact {
     pub penetration: f64,
     /// Penalty energy ½·k·d² summed over every part pressing on the roll, J.
     pub energy: f64,
+    /// Wrap contact ([`roll_wrap`]): the strain energy of the elements measured along their
+    /// path over the roll less that at their chord, J (0 for the segment contact).
+    pub strain: f64,
 }
 
 /// Inputs describing one idler.
@@ -385,10 +389,50 @@ pub fn idler_contact(
     force: &mut [V2],
 ) -> IdlerContact {
     let n = x.len();
+    let (e, [db, best, df]) = track_element(element, x, body);
+    // The tracked element and both neighbours may press on the roll. Near a node the belt
+    // polygon kinks over the roll and two elements penetrate it; taking only the nearest
+    // would flip the force between their two normals as the node passes (and chatter in
+    // statics), while the sum turns smoothly from one to the other.
+    let mut out = IdlerContact::default();
+    for (k, (dist, gamma, closest)) in [((e + n - 1) % n, db), (e, best), ((e + 1) % n, df)] {
+        if dist >= body.radius {
+            continue;
+        }
+        let j = (k + 1) % n;
+        let (normal, fn_, depth) = segment_penalty(body, x, v, k, (dist, gamma, closest));
+        force[k] += normal * (fn_ * (1.0 - gamma));
+        force[j] += normal * (fn_ * gamma);
+        // The deepest part is the contact point for friction; it carries the total force.
+        if !out.active || depth > out.penetration {
+            out.element = k;
+            out.gamma = gamma;
+            out.normal = normal;
+            out.penetration = depth;
+        }
+        out.active = true;
+        out.normal_force += fn_;
+        out.energy += 0.5 * body.stiffness * depth * depth;
+    }
+    out
+}
+
+/// Closest-point data of a segment: (distance, γ, closest point), as [`segment_distance`].
+pub type SegmentPoint = (f64, f64, V2);
+
+/// The element an idler tracks this step: from the one it tracked last (`element`, updated),
+/// stepping to a neighbour while that is nearer, so the search is local. Returns it with the
+/// closest points of the element before it, itself and the one after.
+pub fn track_element(
+    element: &mut usize,
+    x: &[V2],
+    body: &IdlerBody,
+) -> (usize, [SegmentPoint; 3]) {
+    let n = x.len();
     let dist_of = |e: usize| segment_distance(body.center, x[e], x[(e + 1) % n]);
     let mut e = *element % n;
     let mut best = dist_of(e);
-    // Distances of the tracked element's two neighbours, reused for their contact below.
+    // Distances of the tracked element's two neighbours, reused for their contact.
     let mut around = None;
     for _ in 0..n {
         let back = (e + n - 1) % n;
@@ -408,39 +452,37 @@ pub fn idler_contact(
     }
     *element = e;
     let (db, df) = around.unwrap_or_else(|| (dist_of((e + n - 1) % n), dist_of((e + 1) % n)));
-    // The tracked element and both neighbours may press on the roll. Near a node the belt
-    // polygon kinks over the roll and two elements penetrate it; taking only the nearest
-    // would flip the force between their two normals as the node passes (and chatter in
-    // statics), while the sum turns smoothly from one to the other.
-    let mut out = IdlerContact::default();
-    for (k, (dist, gamma, closest)) in [((e + n - 1) % n, db), (e, best), ((e + 1) % n, df)] {
-        if dist >= body.radius {
-            continue;
-        }
-        let j = (k + 1) % n;
-        let normal = if dist > 0.0 {
-            (closest - body.center) / dist
-        } else {
-            // The centre line passes through the idler centre: push along the element normal.
-            let d = x[j] - x[k];
-            V2::new(-d.y, d.x).normalize()
-        };
-        let depth = body.radius - dist;
-        let vc = v[k] * (1.0 - gamma) + v[j] * gamma;
-        let approach = -vc.dot(&normal);
-        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
-        force[k] += normal * (fn_ * (1.0 - gamma));
-        force[j] += normal * (fn_ * gamma);
-        // The deepest part is the contact point for friction; it carries the total force.
-        if !out.active || depth > out.penetration {
-            out.element = k;
-            out.gamma = gamma;
-            out.normal = normal;
-            out.penetration = depth;
-        }
-        out.active = true;
-        out.normal_force += fn_;
-        out.energy += 0.5 * body.stiffness * depth * depth;
+    (e, [db, best, df])
+}
+
+/// Unit normal from the idler centre towards the closest point of element `k` at `dist`.
+#[inline]
+fn contact_normal(body: &IdlerBody, x: &[V2], k: usize, (dist, closest): (f64, V2)) -> V2 {
+    if dist > 0.0 {
+        (closest - body.center) / dist
+    } else {
+        // The centre line passes through the idler centre: push along the element normal.
+        let d = x[(k + 1) % x.len()] - x[k];
+        V2::new(-d.y, d.x).normalize()
     }
-    out
+}
+
+/// The penalty contact of element `k` whose closest point (from [`segment_distance`]) lies
+/// inside the idler: (unit normal from the centre, normal force k·depth + c·approach ≥ 0 N,
+/// depth m). The caller splits the force by the lever rule.
+#[inline]
+pub fn segment_penalty(
+    body: &IdlerBody,
+    x: &[V2],
+    v: &[V2],
+    k: usize,
+    (dist, gamma, closest): SegmentPoint,
+) -> (V2, f64, f64) {
+    let j = (k + 1) % x.len();
+    let normal = contact_normal(body, x, k, (dist, closest));
+    let depth = body.radius - dist;
+    let vc = v[k] * (1.0 - gamma) + v[j] * gamma;
+    let approach = -vc.dot(&normal);
+    let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+    (normal, fn_, depth)
 }

@@ -60,8 +60,12 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
 }
 
 /// Centre-line penalty contact with idlers (thesis eq. 4.95–4.102), each idler tracking
-/// the element it touched last.
+/// the element it touched last; or, with wrap contact on a node belt, the elements over a
+/// roll measured along their path round it ([`super::roll_wrap`]).
 pub fn idler_contact(cx: &mut StageContext<'_>) {
+    if cx.model.roll_wrap {
+        return idler_wrap_contact(cx);
+    }
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     for (k, d) in m.idlers.iter().enumerate() {
         let body = IdlerBody {
@@ -76,6 +80,45 @@ pub fn idler_contact(cx: &mut StageContext<'_>) {
             &s.velocity,
             &body,
             &mut sc.force,
+        );
+    }
+}
+
+/// [`idler_contact`] with wrap contact: each element whose segment cuts a roll is measured
+/// along its path over it. An element measured along a pulley's or another roll's path in
+/// this evaluation keeps the segment contact on a second body (marked in
+/// `Scratch::wrap_mark` with this evaluation's stamp).
+fn idler_wrap_contact(cx: &mut StageContext<'_>) {
+    let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
+    let arm: &[f64] = if effects.damping { &s.arm_force } else { &[] };
+    let law: ElementLaw = m.element_law(effects.damping, arm);
+    sc.wrap_stamp += 1;
+    let stamp = sc.wrap_stamp;
+    if sc.wrap_mark.len() != s.position.len() {
+        sc.wrap_mark = vec![0; s.position.len()];
+    }
+    for c in &sc.contacts {
+        for &(e, _) in &c.wrapped {
+            sc.wrap_mark[e] = stamp;
+        }
+    }
+    for (k, d) in m.idlers.iter().enumerate() {
+        let body = IdlerBody {
+            center: d.center,
+            radius: d.radius,
+            stiffness: d.contact_stiffness * cx.contact_scale,
+            damping: effects.damped(d.contact_damping),
+        };
+        sc.idler_contacts[k] = super::roll_wrap::idler_wrap_contact(
+            &mut s.idler_element[k],
+            &s.position,
+            &s.velocity,
+            &body,
+            &law,
+            &mut sc.wrap_mark,
+            stamp,
+            &mut sc.force,
+            &mut sc.tension,
         );
     }
 }

@@ -187,6 +187,20 @@ impl ElementLaw<'_> {
     }
 }
 
+impl ElementLaw<'_> {
+    /// Elastic strain energy of element `e` at length `l` (m): ½·k·(l − l⁰)², none when
+    /// slack and tension-only, J (the record's strain energy, `record::sample`).
+    #[inline]
+    pub fn energy(&self, e: usize, l: f64) -> f64 {
+        let x = l - self.rest_length[e];
+        if self.tension_only && x < 0.0 {
+            0.0
+        } else {
+            0.5 * self.stiffness[e] * x * x
+        }
+    }
+}
+
 /// The force −T·∂L/∂x on a node outside the circle by `depth` (m) along the outward unit
 /// `radial`, with its inward radial part capped at `stiffness`·depth: a node just off the
 /// drum is pulled back as a penalty spring would push it in (bounded stiffness), not along

@@ -356,6 +356,10 @@ pub(super) fn place(
     // (`contact::wrap`): nodes at equal arc length there, not sunk by a penetration.
     let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     let sink_wraps: &[ContactWrap] = if wrap_contact { &[] } else { &wraps };
+    // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
+    // the belt bends over each roll at the roll, and an element over one is as long as its
+    // path there.
+    let roll_wrap = belt.idler_contact == crate::scene::IdlerContactKind::Wrap;
     // The sag of the spans on rolls (`super::sag`), updated between passes.
     let sag = std::cell::RefCell::new(super::sag::SagShape::default());
     let point = |s: f64| sag.borrow().point(path, s);
@@ -370,8 +374,17 @@ pub(super) fn place(
             // the tension at the element's middle: half its stretched length on
             let guess = l0 * (1.0 + strain(s + 0.5 * l0));
             let chord = l0 * (1.0 + strain(s + 0.5 * guess)) + e;
+            let kink = if roll_wrap {
+                sag.borrow().kink_in(s, s + 1.01 * chord)
+            } else {
+                None
+            };
+            let to_kink = kink.map(|k| (k, (point(k) - point(s)).norm()));
             s = if wrap_contact && (wrap_at(s).is_some() || wrap_at(s + chord).is_some()) {
                 s + chord // the wrapped length is the path's length there
+            } else if let Some((k, d)) = to_kink.filter(|&(_, d)| d < chord) {
+                // over a roll: the two pieces to and from the kink
+                crate::geometry::next_at_chord_on(point, k, chord - d)
             } else {
                 crate::geometry::next_at_chord_on(point, s, chord)
             };
@@ -460,7 +473,14 @@ pub(super) fn place(
         }
         if sags {
             let mass = node_masses(scene, path, &positions, l0)?;
-            let shape = super::sag::shape(scene, path, &at, &mass, |s| init.tension_at(s, length));
+            let shape = super::sag::shape(
+                scene,
+                path,
+                &at,
+                &mass,
+                |s| init.tension_at(s, length),
+                roll_wrap,
+            );
             *sag.borrow_mut() = shape;
         }
         l0 = close(&extra)?;

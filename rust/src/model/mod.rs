@@ -79,6 +79,9 @@ pub struct Model {
     /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
     /// false: nodal contact.
     pub wrap_contact: bool,
+    /// Wrap contact with the idler rolls (`belt.idler_contact = "wrap"`,
+    /// `contact::roll_wrap`); false: centre-line segment contact.
+    pub roll_wrap: bool,
     /// The belt formulation. With [`Formulation::RigidBody`] the "nodes" are the bodies'
     /// mass centres and the "elements" the joints between them (joint e joins body e and
     /// e+1): `mass`, `rest_length` (body length), `axial_stiffness` and `axial_damping`
@@ -189,6 +192,13 @@ impl Model {
     pub fn compile(scene: &Scene) -> BeltResult<Model> {
         scene.validate()?;
         if scene.belt.is_open() {
+            if scene.belt.idler_contact == crate::scene::IdlerContactKind::Wrap {
+                return Err(BeltError::invalid(
+                    "belt.idler_contact",
+                    "wrap",
+                    "an open belt (belt.start/belt.end) meets its rolls on its elements' centre lines (\"segment\"); wrap contact is for a closed loop",
+                ));
+            }
             if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
                 return Err(BeltError::invalid(
                     "belt.pulley_contact",
@@ -278,6 +288,7 @@ impl Model {
             uniform,
             tension_only: scene.belt.tension_only,
             wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
+            roll_wrap: scene.belt.idler_contact == crate::scene::IdlerContactKind::Wrap,
             formulation,
             gravity: scene.gravity,
             dofs: DofLayout::new(belt.nodes, &takeups, idlers.len()).with_bodies(

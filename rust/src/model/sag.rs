@@ -34,6 +34,9 @@ type V2 = Vector2<f64>;
 #[derive(Debug, Clone, Default)]
 pub(super) struct SagShape {
     lines: Vec<SagLine>,
+    /// Arc lengths (increasing) of the kinks on the rolls (`kinked` placement): the belt's
+    /// path bends there, over the roll, not at the nodes.
+    kinks: Vec<f64>,
 }
 
 #[derive(Debug, Clone)]
@@ -45,6 +48,13 @@ struct SagLine {
 }
 
 impl SagShape {
+    /// The first kink on a roll at arc length in (s0, s1], if any (no wrap round the path's
+    /// end: the lines do not cross node 0's arc length).
+    pub fn kink_in(&self, s0: f64, s1: f64) -> Option<f64> {
+        let k = self.kinks.partition_point(|&s| s <= s0);
+        self.kinks.get(k).copied().filter(|&s| s <= s1)
+    }
+
     /// The placement point at arc length `s` (modulo the path length): the path's point
     /// moved along its line's normal by the interpolated offset.
     pub fn point(&self, path: &BeltPath, s: f64) -> V2 {
@@ -75,19 +85,25 @@ struct Roll {
 
 /// The sag of every straight line of `path` that rests on rolls, for nodes at arc lengths
 /// `at` (increasing from node 0, below the path length) of masses `mass` (kg), with the
-/// design tension `tension(s)` (N) at arc length s.
+/// design tension `tension(s)` (N) at arc length s. `kinked`: the belt bends over each
+/// roll at the roll (wrap contact on the rolls, `contact::roll_wrap`): the element over a
+/// roll is its two straight pieces from its nodes to the roll's top, the roll a support
+/// (its reaction the tension times the slope change there), instead of a penalty spring
+/// on the element's chord.
 pub(super) fn shape(
     scene: &Scene,
     path: &BeltPath,
     at: &[f64],
     mass: &[f64],
     tension: impl Fn(f64) -> f64,
+    kinked: bool,
 ) -> SagShape {
     let n = at.len();
     let g = scene.gravity;
     let mut lines = Vec::new();
+    let mut kinks = Vec::new();
     if g <= 0.0 || n < 3 {
-        return SagShape { lines };
+        return SagShape { lines, kinks };
     }
     for (seg, &from) in path.segments.iter().zip(&path.starts) {
         let Segment::Line { a, b } = *seg else {
@@ -184,6 +200,28 @@ pub(super) fn shape(
             let gamma = ((foot - xs[e]) / (xs[e + 1] - xs[e])).clamp(0.0, 1.0);
             (e, gamma, r.top - r.radius * (1.0 - cos))
         };
+        // Kinked: the roll (by index) bending element e, and the kink (abscissa, offset).
+        let kink_of = |active: &[bool], slope: &[f64]| -> Vec<Option<(usize, f64, f64)>> {
+            let mut kink = vec![None; m + 1];
+            if kinked {
+                for (k, r) in rolls.iter().enumerate().filter(|&(k, _)| active[k]) {
+                    let (e, gamma, top) = place(r, slope[k]);
+                    if kink[e].is_none() {
+                        kink[e] = Some((k, xs[e] + gamma * (xs[e + 1] - xs[e]), top));
+                    }
+                }
+            }
+            kink
+        };
+        // The piece of element e from node e (`left`) or to node e + 1 to its kink:
+        // (its horizontal length, the kink's offset), or None (no kink).
+        let piece = |kink: &[Option<(usize, f64, f64)>], e: usize, left: bool| {
+            kink[e].map(|(_, xk, yk)| {
+                let dx = if left { xk - xs[e] } else { xs[e + 1] - xk };
+                (dx.max(1e-9 * (xs[e + 1] - xs[e])), yk)
+            })
+        };
+        let mut kink = kink_of(&active, &slope);
         for _ in 0..16 {
             // unknowns y[1..=m]; rows j = 1..=m
             let mut lo = vec![0.0; m + 2];
@@ -191,19 +229,42 @@ pub(super) fn shape(
             let mut up = vec![0.0; m + 2];
             let mut rhs = vec![0.0; m + 2];
             for j in 1..=m {
-                let (kl, kr) = (h[j - 1] / (xs[j] - xs[j - 1]), h[j] / (xs[j + 1] - xs[j]));
-                lo[j] = kl;
-                up[j] = kr;
-                di[j] = -(kl + kr);
                 rhs[j] = weight[j - 1];
+                // the element before node j: to node j − 1, or from its kink
+                let kl = match piece(&kink, j - 1, false) {
+                    Some((dx, yk)) => {
+                        let k = h[j - 1] / dx;
+                        rhs[j] -= k * yk;
+                        k
+                    }
+                    None => {
+                        lo[j] = h[j - 1] / (xs[j] - xs[j - 1]);
+                        lo[j]
+                    }
+                };
+                let kr = match piece(&kink, j, true) {
+                    Some((dx, yk)) => {
+                        let k = h[j] / dx;
+                        rhs[j] -= k * yk;
+                        k
+                    }
+                    None => {
+                        up[j] = h[j] / (xs[j + 1] - xs[j]);
+                        up[j]
+                    }
+                };
+                di[j] = -(kl + kr);
             }
-            for ((r, _), &phi) in rolls
+            for (k, (r, &phi)) in rolls
                 .iter()
-                .zip(&active)
                 .zip(&slope)
-                .filter(|((_, &on), _)| on)
+                .enumerate()
+                .filter(|&(k, _)| active[k])
             {
                 let (e, gamma, top) = place(r, phi);
+                if kink[e].is_some_and(|(kk, _, _)| kk == k) {
+                    continue; // a support, in the rows above
+                }
                 let (we, wf) = (1.0 - gamma, gamma);
                 let k = r.stiffness;
                 // force k·(top − we·y_e − wf·y_f) to e (share we) and f = e + 1 (share wf)
@@ -246,23 +307,55 @@ pub(super) fn shape(
                 .fold(0.0, f64::max);
             y = next;
             let mut changed = false;
-            for ((r, on), phi) in rolls.iter().zip(active.iter_mut()).zip(slope.iter_mut()) {
+            for (k, ((r, on), phi)) in rolls
+                .iter()
+                .zip(active.iter_mut())
+                .zip(slope.iter_mut())
+                .enumerate()
+            {
                 let (e, gamma, top) = place(r, *phi);
-                let depth = top - ((1.0 - gamma) * y[e] + gamma * y[e + 1]);
-                if *on && depth < 0.0 {
+                let pull = match kink[e] {
+                    // A support pulls where the belt bends down over it (its reaction,
+                    // the tension times the slope change, is negative).
+                    Some((kk, xk, yk)) if kk == k => {
+                        (yk - y[e]) / (xk - xs[e]).max(1e-12)
+                            < (y[e + 1] - yk) / (xs[e + 1] - xk).max(1e-12)
+                    }
+                    _ => top - ((1.0 - gamma) * y[e] + gamma * y[e + 1]) < 0.0,
+                };
+                if *on && pull {
                     *on = false;
                     changed = true;
                 }
                 *phi = (y[e + 1] - y[e]) / (xs[e + 1] - xs[e]);
             }
+            let next_kink = kink_of(&active, &slope);
+            let kink_moved = next_kink.iter().zip(&kink).any(|(a, b)| match (a, b) {
+                (Some(a), Some(b)) => {
+                    a.0 != b.0 || (a.1 - b.1).abs() > 1e-9 || (a.2 - b.2).abs() > 1e-10
+                }
+                (None, None) => false,
+                _ => true,
+            });
+            kink = next_kink;
+            changed |= kink_moved;
             if !changed && moved <= 1e-10 {
                 break;
             }
         }
         let mut knots = Vec::with_capacity(m + 2);
         knots.push((from, 0.0));
+        if let Some((_, xk, yk)) = kink[0] {
+            knots.push((from + xk.max(0.0), yk));
+            kinks.push(from + xk.max(0.0));
+        }
         for j in 1..=m {
             knots.push((from + xs[j], y[j]));
+            if let Some((_, xk, yk)) = kink[j] {
+                let xk = xk.min(len);
+                knots.push((from + xk, yk));
+                kinks.push(from + xk);
+            }
         }
         knots.push((to, 0.0));
         lines.push(SagLine {
@@ -272,5 +365,6 @@ pub(super) fn shape(
             knots,
         });
     }
-    SagShape { lines }
+    kinks.sort_by(f64::total_cmp);
+    SagShape { lines, kinks }
 }

@@ -93,6 +93,8 @@ impl Simulation {
         // deepest).
         for c in &sc.idler_contacts {
             e.contact += c.energy;
+            // Elements wrapped over a roll (contact::roll_wrap), as on a pulley above.
+            e.strain += c.strain;
         }
         e
     }

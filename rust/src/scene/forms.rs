@@ -6,8 +6,8 @@
 
 use super::read::rule;
 use super::{
-    BrakeSpec, CreepFriction, Formulation, FrictionModel, IntegratorKind, PulleyContact, Table,
-    TakeupKind, Wrap,
+    BrakeSpec, CreepFriction, Formulation, FrictionModel, IdlerContactKind, IntegratorKind,
+    PulleyContact, Table, TakeupKind, Wrap,
 };
 use crate::start_curve::StartShape;
 use crate::suggest::close_match;
@@ -109,6 +109,20 @@ impl Named for PulleyContact {
     }
 }
 named_serde!(PulleyContact);
+
+impl Named for IdlerContactKind {
+    const NAMES: &'static [(Self, &'static str)] = &[
+        (IdlerContactKind::Segment, "segment"),
+        (IdlerContactKind::Wrap, "wrap"),
+    ];
+    fn expected() -> String {
+        "\"segment\" or \"wrap\"".into()
+    }
+    fn unknown(_: &str) -> String {
+        format!("unknown idler contact (known: {})", Self::expected())
+    }
+}
+named_serde!(IdlerContactKind);
 impl Named for IntegratorKind {
     const NAMES: &'static [(Self, &'static str)] = &[
         (IntegratorKind::CentralDifference, "central_difference"),

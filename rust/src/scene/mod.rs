@@ -67,6 +67,18 @@ pub enum PulleyContact {
     Wrap,
 }
 
+/// How the belt meets the idler rolls (`belt.idler_contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum IdlerContactKind {
+    /// Centre-line penalty contact of the straight elements (thesis eq. 4.95–4.102).
+    #[default]
+    Segment,
+    /// Wrap contact (`contact::roll_wrap`, docs/wrap-contact.md): an element over a roll is
+    /// measured along its path over it, so its nodes lie on the belt's continuous path at
+    /// every phase (no chordal action at the rolls). Node belt, closed loop.
+    Wrap,
+}
+
 /// Belt properties (the `[belt]` table).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -128,6 +140,9 @@ pub struct BeltParams {
     /// How the belt meets the pulleys: [`PulleyContact::Nodes`] (thesis, default) or
     /// [`PulleyContact::Wrap`] (no chordal ripple; docs/wrap-contact.md).
     pub pulley_contact: PulleyContact,
+    /// How the belt meets the idler rolls: [`IdlerContactKind::Segment`] (thesis, default)
+    /// or [`IdlerContactKind::Wrap`] (docs/wrap-contact.md, "The rolls' chordal action").
+    pub idler_contact: IdlerContactKind,
     /// The belt's first end, for an open belt (give `start` and `end` together): the
     /// belt runs from it round the pulleys in order to `end` (`docs/open-belts.md`).
     /// `None`: a closed loop. Default `None`.
@@ -160,6 +175,7 @@ impl Default for BeltParams {
             tension_only: false,
             max_placement_strain: DEFAULT_MAX_PLACEMENT_STRAIN,
             pulley_contact: PulleyContact::Nodes,
+            idler_contact: IdlerContactKind::Segment,
             start: None,
             end: None,
         }

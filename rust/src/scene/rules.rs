@@ -75,6 +75,15 @@ impl Scene {
                 "wrap contact measures node-belt elements along their path round a pulley; the rigid_body formulation's bodies touch pulleys at their mass centres: use pulley_contact = \"nodes\"",
             ));
         }
+        if self.belt.formulation == Formulation::RigidBody
+            && self.belt.idler_contact == super::IdlerContactKind::Wrap
+        {
+            return Err(BeltError::invalid(
+                "belt.idler_contact",
+                "wrap",
+                "wrap contact measures node-belt elements along their path over a roll; the rigid_body formulation's bodies touch the rolls along their axes: use idler_contact = \"segment\"",
+            ));
+        }
         if let Some(tau) = self.belt.damping_time {
             if !(tau.is_finite() && tau >= 0.0) {
                 return Err(BeltError::invalid(

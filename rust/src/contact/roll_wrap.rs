@@ -1,0 +1,156 @@
+//! Wrap contact on idler rolls: an element whose straight segment cuts a roll's circle is
+//! measured along the belt's path over the roll (tangent, arc, tangent), as [`super::wrap`]
+//! measures an element on a pulley: `belt.idler_contact = "wrap"` (node belt, closed loop;
+//! opt-in).
+//!
+//! Why (issue 12, docs/wrap-contact.md "The rolls' chordal action"). With centre-line
+//! segment contact a straight element resting on a roll under its middle holds its two nodes
+//! about θ·l/4 above the continuous belt's curve (θ = q·a/T the slope change over the roll),
+//! and a node over the roll does not: each roll acts on the belt like a roll bobbing at the
+//! node-passing frequency v/l, the chordal action that wrap contact removed on the drums.
+//! It showed in the steady drive torque of the 300 m conveyor as lines at v/l and its
+//! harmonics (57–59 Hz at the default 0.2094 m elements: moving to 13 and 27 Hz at 0.15 m
+//! elements and to 42 Hz at 1.5 m/s). Measured along its path over the roll, an element's
+//! length and forces are continuous in the node positions whatever the phase: a node lies on
+//! the belt's continuous curve whether the roll is under it or under an element's middle.
+//!
+//! The roll receives T·(∂L/∂p + ∂L/∂q) through its centre (the element's tension T from its
+//! path length, with the axial law's damper on dL/dt); a node inside the circle (a node over
+//! the roll pressed into it) also gets the penalty force of the segment contact on the
+//! approach speed. The friction and running-resistance stages see one contact point: the
+//! load-weighted middle of the parts pressing on the roll (each wrapped arc's middle and each
+//! pressed node), with the resultant's direction as its normal and magnitude as its normal
+//! force, so the rolls' rotation, friction and DIN f resistance work as before.
+//!
+//! An element that a pulley or another roll has already measured along its path this
+//! evaluation (a roll within an element length of a drum or of another roll) keeps the
+//! centre-line segment contact on that roll: the path round two bodies is not measured.
+
+use super::wrap::{self, ElementLaw};
+use super::{IdlerBody, IdlerContact};
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// Wrap contact with one roll. `element` is the roll's tracked element (updated as for the
+/// segment contact, [`super::idler_contact`]); `claimed[e] == stamp` marks an element already
+/// measured along a wrapped path this evaluation (it gets the segment contact here), and the
+/// elements wrapped here are marked. Each wrapped element's tension is written to `tension`.
+/// Returns the contact (its `strain`: the wrapped elements' strain energy at their path
+/// length less that at their chord, J).
+#[allow(clippy::too_many_arguments)]
+pub fn idler_wrap_contact(
+    element: &mut usize,
+    x: &[V2],
+    v: &[V2],
+    body: &IdlerBody,
+    law: &ElementLaw,
+    claimed: &mut [u64],
+    stamp: u64,
+    force: &mut [V2],
+    tension: &mut [f64],
+) -> IdlerContact {
+    let n = x.len();
+    let (e, near) = super::track_element(element, x, body);
+    let first = (e + n - 1) % n;
+    // The resultant on the belt and the load-weighted position of its parts, in elements
+    // from node `first`.
+    let mut total = V2::zeros();
+    let (mut weight, mut moment) = (0.0, 0.0);
+    let mut out = IdlerContact::default();
+    for (off, &(dist, gamma, closest)) in near.iter().enumerate() {
+        let k = (first + off) % n;
+        let j = (k + 1) % n;
+        if claimed[k] == stamp {
+            // Measured along another body's path already: the segment contact.
+            if dist < body.radius {
+                let (normal, fn_, depth) =
+                    super::segment_penalty(body, x, v, k, (dist, gamma, closest));
+                let f = normal * fn_;
+                force[k] += f * (1.0 - gamma);
+                force[j] += f * gamma;
+                total += f;
+                weight += fn_;
+                moment += fn_ * (off as f64 + gamma);
+                out.penetration = out.penetration.max(depth);
+                out.energy += 0.5 * body.stiffness * depth * depth;
+            }
+            continue;
+        }
+        if dist >= body.radius {
+            continue; // clear of the roll, both nodes too
+        }
+        let Some(g) = wrap::wrap(x[k], x[j], body.center, body.radius) else {
+            continue;
+        };
+        claimed[k] = stamp;
+        let (t, on_roll) = wrap::apply_wrap(
+            &g,
+            k,
+            (k, j),
+            x,
+            v,
+            (body.center, V2::zeros()),
+            (body.radius, 0.5 * body.stiffness),
+            law,
+            force,
+        );
+        tension[k] = t;
+        // The roll's contact damping on a node moving towards the roll across its tangent
+        // line (never pulling): zero in steady running, where the nodes move along the path.
+        let mut on_roll = on_roll;
+        for (i, grad, tangent) in [(k, g.grad_p, g.tangent_p), (j, g.grad_q, g.tangent_q)] {
+            if tangent <= 0.0 || body.damping == 0.0 {
+                continue;
+            }
+            let mut u = V2::new(-grad.y, grad.x);
+            if u.dot(&(x[i] - body.center)) < 0.0 {
+                u = -u;
+            }
+            let approach = -v[i].dot(&u);
+            if approach > 0.0 {
+                let f = u * (body.damping * approach);
+                force[i] += f;
+                on_roll -= f;
+            }
+        }
+        total -= on_roll;
+        let w = on_roll.norm();
+        weight += w;
+        moment += w * (off as f64 + g.share_q);
+        let chord = (x[j] - x[k]).norm();
+        out.strain += law.energy(k, g.length) - law.energy(k, chord);
+    }
+    // Nodes pressed into the roll: the penalty keeps them out.
+    let r2 = body.radius * body.radius;
+    for off in 0..4 {
+        let i = (first + off) % n;
+        let rel = x[i] - body.center;
+        let a2 = rel.norm_squared();
+        if a2 >= r2 {
+            continue;
+        }
+        let a = a2.sqrt();
+        let normal = if a > 0.0 { rel / a } else { V2::new(0.0, 1.0) };
+        let depth = body.radius - a;
+        let approach = -v[i].dot(&normal);
+        let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
+        force[i] += normal * fn_;
+        total += normal * fn_;
+        weight += fn_;
+        moment += fn_ * off as f64;
+        out.penetration = out.penetration.max(depth);
+        out.energy += 0.5 * body.stiffness * depth * depth;
+    }
+    let load = total.norm();
+    if load > 0.0 && weight > 0.0 {
+        let s = (moment / weight).clamp(0.0, 3.0);
+        let off = (s.floor() as usize).min(2);
+        out.active = true;
+        out.element = (first + off) % n;
+        out.gamma = s - off as f64;
+        out.normal = total / load;
+        out.normal_force = load;
+    }
+    out
+}

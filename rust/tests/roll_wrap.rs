@@ -1,0 +1,273 @@
+//! Wrap contact on idler rolls (`beltrs::contact::roll_wrap`): the node forces are minus the
+//! gradient of the energy (finite differences), the roll takes the resultant, the forces are
+//! continuous as a chain slides over the roll (a node landing on it, an element starting to
+//! touch), and a belt lying on its continuous path over a roll (two straight runs tangent to
+//! the roll) presses it with the same force whatever the phase of its nodes: the segment
+//! contact's chordal action (nodes lifted above the path when the roll is under an element's
+//! middle) is gone.
+use beltrs::contact::roll_wrap::idler_wrap_contact;
+use beltrs::contact::wrap::{wrap, ElementLaw};
+use beltrs::contact::{idler_contact, IdlerBody};
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+const R: f64 = 0.0635;
+const L0: f64 = 0.2;
+const K: f64 = 4.0e8; // EA/l, N/m
+const KC: f64 = 1.0e8; // roll contact stiffness, N/m
+
+fn roll() -> IdlerBody {
+    IdlerBody {
+        center: V2::new(0.0, -R),
+        radius: R,
+        stiffness: KC,
+        damping: 0.0,
+    }
+}
+
+struct Chain {
+    stiffness: Vec<f64>,
+    damping: Vec<f64>,
+    rest: Vec<f64>,
+}
+
+impl Chain {
+    fn new(n: usize, rest: f64) -> Chain {
+        Chain {
+            stiffness: vec![K; n],
+            damping: vec![0.0; n],
+            rest: vec![rest; n],
+        }
+    }
+    fn law(&self) -> ElementLaw<'_> {
+        ElementLaw {
+            stiffness: &self.stiffness,
+            damping: &self.damping,
+            rest_length: &self.rest,
+            damped: false,
+            tension_only: true,
+            arm: &[],
+        }
+    }
+}
+
+/// The forces of an open run of nodes `x` (a closed loop in the kernels' indexing, its
+/// closing element slack: rest length far above its chord) over the roll: the axial pass's
+/// chord forces, then the roll's wrap contact. Returns (node forces, contact).
+fn forces(x: &[V2], chain: &Chain) -> (Vec<V2>, beltrs::contact::IdlerContact) {
+    let n = x.len();
+    let v = vec![V2::zeros(); n];
+    let law = chain.law();
+    let mut f = vec![V2::zeros(); n];
+    let mut tension = vec![0.0; n];
+    for e in 0..n {
+        let j = (e + 1) % n;
+        let d = x[j] - x[e];
+        let l = d.norm();
+        let t = law.tension(e, l, 0.0);
+        tension[e] = t;
+        f[e] += d * (t / l);
+        f[j] -= d * (t / l);
+    }
+    let mut claimed = vec![0u64; n];
+    let mut element = n / 2;
+    let c = idler_wrap_contact(
+        &mut element,
+        x,
+        &v,
+        &roll(),
+        &law,
+        &mut claimed,
+        1,
+        &mut f,
+        &mut tension,
+    );
+    (f, c)
+}
+
+/// Energy of the same run: the elements at their wrapped length where the roll wraps them
+/// (the contact's elements: the tracked one and its neighbours), at their chord elsewhere,
+/// plus the penalty of nodes inside the roll.
+fn energy(x: &[V2], chain: &Chain) -> f64 {
+    let n = x.len();
+    let law = chain.law();
+    let b = roll();
+    let mut e = 0.0;
+    for k in 0..n {
+        let (p, q) = (x[k], x[(k + 1) % n]);
+        let l = match wrap(p, q, b.center, b.radius) {
+            Some(g) if k > 0 && k + 1 < n => g.length,
+            _ => (q - p).norm(),
+        };
+        e += law.energy(k, l);
+    }
+    for p in x {
+        let depth = b.radius - (p - b.center).norm();
+        if depth > 0.0 {
+            e += 0.5 * KC * depth * depth;
+        }
+    }
+    e
+}
+
+/// Nodes at spacing `h` of path length along the path that rises at `slope` to the roll,
+/// follows it and falls at `slope` beyond (the continuous belt over a roll: a slope change
+/// of 2·slope, rounded by the roll), the first node at path length `s0` from the first
+/// tangent point (negative: before it).
+fn on_path(s0: f64, h: f64, nodes: usize, slope: f64) -> Vec<V2> {
+    let a = slope.atan();
+    let c = roll().center;
+    let left = c + V2::new(-a.sin(), a.cos()) * R;
+    let right = c + V2::new(a.sin(), a.cos()) * R;
+    let arc = 2.0 * a * R;
+    let point = |s: f64| {
+        if s <= 0.0 {
+            left + V2::new(a.cos(), a.sin()) * s
+        } else if s >= arc {
+            right + V2::new(a.cos(), -a.sin()) * (s - arc)
+        } else {
+            let phi = a - s / R; // from the vertical, clockwise
+            c + V2::new(-phi.sin(), phi.cos()) * R
+        }
+    };
+    (0..nodes).map(|k| point(s0 + h * k as f64)).collect()
+}
+
+#[test]
+fn node_forces_are_minus_the_energy_gradient() {
+    let chain = Chain::new(6, L0 * 0.999);
+    // Six nodes over the roll: one element cutting the roll, one node pressed into it.
+    let mut x = on_path(-0.45, L0, 5, 0.02);
+    x.push(V2::new(0.0, -2.0)); // the closing elements: slack
+    let mut chain = chain;
+    chain.rest[4] = 10.0;
+    chain.rest[5] = 10.0;
+    // One node pressed 5 µm into the roll.
+    let i = (0..5)
+        .min_by(|&a, &b| x[a].x.abs().total_cmp(&x[b].x.abs()))
+        .unwrap();
+    let c = roll().center;
+    x[i] = c + (x[i] - c).normalize() * (R - 5e-6);
+    let (f, contact) = forces(&x, &chain);
+    assert!(contact.active);
+    let h = 1e-9;
+    for k in 0..5 {
+        for (axis, unit) in [(0, V2::new(1.0, 0.0)), (1, V2::new(0.0, 1.0))] {
+            let (mut a, mut b) = (x.clone(), x.clone());
+            a[k] += unit * h;
+            b[k] -= unit * h;
+            let grad = (energy(&a, &chain) - energy(&b, &chain)) / (2.0 * h);
+            let tol = 1e-5 * f[k].norm().max(1.0) + 1e-3;
+            assert!(
+                (f[k][axis] + grad).abs() < tol,
+                "node {k} axis {axis}: {} vs {}",
+                f[k][axis],
+                -grad
+            );
+        }
+    }
+}
+
+#[test]
+fn roll_takes_the_resultant_through_its_centre() {
+    let mut chain = Chain::new(6, L0 * 0.999);
+    chain.rest[4] = 10.0;
+    chain.rest[5] = 10.0;
+    // (Not with a node within a few mm of a tangent point: there the radial pull on it is
+    // capped at the contact stiffness times its height, `contact::wrap::capped`, and the
+    // roll takes the difference, as a penalty spring would, until the node settles.)
+    for x0 in [-0.45, -0.41, -0.37, -0.33, -0.4 + 0.01 * R] {
+        let mut x = on_path(x0, L0, 5, 0.02);
+        x.push(V2::new(0.0, -2.0));
+        let (f, c) = forces(&x, &chain);
+        // Internal forces cancel: the net force on the nodes is the roll's push.
+        let net: V2 = f.iter().sum();
+        assert!(c.active);
+        assert!(
+            (net - c.normal * c.normal_force).norm() < 1e-6 * c.normal_force,
+            "{net:?} vs {:?}",
+            c.normal * c.normal_force
+        );
+        // It pushes out of the roll, near the vertical, and about 2·T·slope.
+        let t = K * (L0 - L0 * 0.999);
+        assert!(c.normal.y > 0.99, "{:?}", c.normal);
+        let expect = 2.0 * t * 0.02_f64.atan().sin();
+        assert!(
+            (c.normal_force - expect).abs() < 0.01 * expect,
+            "x0 {x0}: {} vs {expect}",
+            c.normal_force
+        );
+        assert!(c.gamma >= 0.0 && c.gamma <= 1.0);
+    }
+}
+
+#[test]
+fn the_roll_load_is_the_same_at_every_phase_of_the_nodes() {
+    // The belt on its continuous path over the roll, its nodes shifted along it through one
+    // element: the wrap contact sees the same load (to the nodes' penalty on the short arc),
+    // the segment contact does not (a straight element under tension over the roll lifts its
+    // nodes off the path, so nodes laid on the path press the roll's chord into it).
+    let slope: f64 = 0.0175; // a carry roll: half the slope change q·a/T = 0.035
+    let mut chain = Chain::new(8, L0 * 0.9995);
+    chain.rest[6] = 10.0;
+    chain.rest[7] = 10.0;
+    let t = K * (L0 - L0 * 0.9995);
+    let expect = 2.0 * t * slope.atan().sin();
+    let (mut wrap_lo, mut wrap_hi) = (f64::INFINITY, 0.0_f64);
+    let (mut seg_lo, mut seg_hi) = (f64::INFINITY, 0.0_f64);
+    for k in 0..40 {
+        let mut x = on_path(-0.65 + L0 * k as f64 / 40.0, L0, 7, slope);
+        x.push(V2::new(0.0, -2.0));
+        let (_, c) = forces(&x, &chain);
+        wrap_lo = wrap_lo.min(c.normal_force);
+        wrap_hi = wrap_hi.max(c.normal_force);
+        let v = vec![V2::zeros(); x.len()];
+        let mut f = vec![V2::zeros(); x.len()];
+        let mut element = 3;
+        let s = idler_contact(&mut element, &x, &v, &roll(), &mut f);
+        seg_lo = seg_lo.min(if s.active { s.normal_force } else { 0.0 });
+        seg_hi = seg_hi.max(s.normal_force);
+    }
+    assert!(
+        (wrap_lo - expect).abs() < 0.01 * expect,
+        "{wrap_lo} vs {expect}"
+    );
+    assert!(
+        (wrap_hi - expect).abs() < 0.01 * expect,
+        "{wrap_hi} vs {expect}"
+    );
+    // The segment contact: every chord next to the roll dips into it (the path is convex
+    // there), by up to θ·l/8 when the roll is under an element's middle: the load swings by
+    // tens of kN at 1e8 N/m.
+    assert!(seg_hi - seg_lo > 10.0 * expect, "{seg_lo} .. {seg_hi}");
+}
+
+#[test]
+fn forces_are_continuous_as_the_chain_slides_over_the_roll() {
+    // The belt sliding along its path over the roll in steps of 10 µm: no force jumps as an
+    // element starts to touch, a node lands on the roll or leaves it (a jump would be of
+    // order T·slope, ~1.4 kN here).
+    let slope: f64 = 0.0175;
+    let mut chain = Chain::new(8, L0 * 0.9995);
+    chain.rest[6] = 10.0;
+    chain.rest[7] = 10.0;
+    let mut last: Option<Vec<V2>> = None;
+    let step = 1e-5;
+    let mut worst = 0.0_f64;
+    for k in 0..(2.0 * L0 / step) as usize {
+        let mut x = on_path(-0.65 + step * k as f64, L0, 7, slope);
+        x.push(V2::new(0.0, -2.0));
+        let (f, _) = forces(&x, &chain);
+        if let Some(prev) = &last {
+            for i in 0..7 {
+                worst = worst.max((f[i] - prev[i]).norm());
+            }
+        }
+        last = Some(f);
+    }
+    assert!(
+        worst < 50.0,
+        "largest change of a node force over a 10 µm slide: {worst} N"
+    );
+}
