@@ -43,6 +43,26 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.tension,
                 contacts,
             )
+        } else if m.is_rigid() {
+            // Rigid bodies touch with their two ends (`belt::rigid::contact`).
+            let nonlinear = p.nonlinear.map(|nl| NonlinearContact {
+                damping: effects.damped(nl.damping),
+                ..nl.scaled(cx.contact_scale)
+            });
+            let normal_force = |depth: f64, rate: f64| match &nonlinear {
+                Some(nl) => nl.normal_force(depth, rate),
+                None => super::penalty(&body, depth, rate),
+            };
+            let bodies = (x, v, &s.body_angle[..], &s.body_spin[..], &m.rest_length[..]);
+            super::pulley_body_contact(
+                window,
+                bodies,
+                &body,
+                &mut sc.force,
+                &mut sc.body_torque,
+                contacts,
+                normal_force,
+            )
         } else {
             // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
             // with wrap contact).

@@ -355,6 +355,20 @@ impl Model {
         self.formulation == Formulation::RigidBody
     }
 
+    /// The radius at which pulley `j`'s friction acts on the belt points, m: the surface
+    /// speed ω·r a point touching it is measured against and the lever of its friction.
+    /// The pulley's radius for nodes; for rigid bodies, whose ends rest on the pulley,
+    /// their mass centres' distance ρ = (l/2)·cot(l/2R) (`belt::rigid::contact`).
+    #[inline]
+    pub fn friction_radius(&self, j: usize) -> f64 {
+        let r = self.pulleys[j].radius;
+        if self.is_rigid() {
+            crate::belt::rigid::contact::contact_radius(self.element_length(), r)
+        } else {
+            r
+        }
+    }
+
     /// True if the compiled model runs `stage`.
     pub fn has_stage(&self, stage: Stage) -> bool {
         self.stages.contains(&stage)

@@ -1,0 +1,175 @@
+//! A rigid body lying on a pulley: the contact law of a chord on a circle.
+//!
+//! The belt on a drum of radius R is an arc; a rigid body of length l stands for l/R of
+//! it. Kubas (section 2.1) touches the pulley at the mass centre. That leaves the body free
+//! to turn about its mass centre on the drum (neither the normal force, radial through the
+//! centre, nor the friction, along the tangent there, has a moment about it), and a chain of
+//! such bodies on a wrap has one motion the drum does not resist: neighbouring bodies
+//! turning opposite ways (a zig-zag whose joints go alternately in and out), held only by
+//! the tension. Sliding friction feeds it (measured on the sliding capstan rig of
+//! `tests/test_capstan.py`: from 0.5 to 20 mrad in 10 ms, the belt thrown off the sheave),
+//! and it spoils the capstan law.
+//!
+//! Here a body touches the pulley with its two **ends**, as a chord whose ends rest on the
+//! circle: each end is a penalty contact on a circle of radius
+//! R_e = l / (2·sin(l/2R)), on which a chord of length l subtends exactly l/R (so the
+//! polygon of bodies holds the arc's length: no a²/12 excess of the circumscribed polygon,
+//! no a²/24 deficit of the inscribed one), with the outward normal at the end. An end
+//! pressed in pushes that end out, so a body cannot turn on the drum without one end
+//! digging in: the zig-zag meets the contact stiffness. Under tension T the joint between
+//! two bodies turns the tension by the angle a = l/R between their axes and presses on the
+//! drum with T·a, shared by the two ends that meet there: the normal force of the capstan,
+//! as at the node belt's nodes.
+//!
+//! Each end takes half the law's force at its depth (`law`, N), so a body pressed in as a
+//! whole carries the law's force, as a node does (the linear penalty: k/2 per end). The
+//! friction acts on the body as one contact at its mass centre with the ends' summed
+//! normal force N_a + N_b and the direction of their resultant (the chord's normal): it
+//! pulls along the chord, with no moment about the mass centre. The mass centre of a body
+//! whose ends rest on R_e lies at ρ = R_e·cos(l/2R) = (l/2)·cot(l/2R) ([`contact_radius`]):
+//! a body turning with the pulley moves its mass centre at ω·ρ, the surface speed the
+//! friction of a body is measured against, and its lever about the pulley's centre.
+//!
+//! An open belt's end points (length 0) are points and touch the circle of radius R.
+
+use nalgebra::Vector2;
+
+type V2 = Vector2<f64>;
+
+/// R_e = l / (2·sin(l/2R)): the circle on which the ends of a chord of length `length`
+/// subtend `length`/`radius` of arc, m (`radius` for a point, length 0).
+#[inline]
+pub fn end_radius(length: f64, radius: f64) -> f64 {
+    let half = 0.5 * length / radius;
+    if half > 0.0 {
+        0.5 * length / half.sin()
+    } else {
+        radius
+    }
+}
+
+/// ρ = (l/2)·cot(l/2R) = R − l²/(12R) − …: the distance from the pulley's centre of the
+/// mass centre of a body of length `length` whose ends rest on [`end_radius`], m
+/// (`radius` for a point).
+#[inline]
+pub fn contact_radius(length: f64, radius: f64) -> f64 {
+    let half = 0.5 * length / radius;
+    if half > 0.0 {
+        0.5 * length / half.tan()
+    } else {
+        radius
+    }
+}
+
+/// One body as the contact sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct BodyOnPulley {
+    /// Mass centre, m.
+    pub position: V2,
+    /// Velocity of the mass centre, m/s.
+    pub velocity: V2,
+    /// Axis angle, rad.
+    pub angle: f64,
+    /// Angular velocity, rad/s.
+    pub spin: f64,
+    /// Length, m (0: a point).
+    pub length: f64,
+}
+
+/// The contact of one body with a pulley.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BodyContact {
+    /// Force of the pulley on the body, N (the sum over its ends).
+    pub force: V2,
+    /// Its moment about the mass centre, N·m.
+    pub torque: f64,
+    /// Summed normal force of the ends, N (≥ 0; 0: no contact).
+    pub normal_force: f64,
+    /// Deepest penetration of an end, m.
+    pub penetration: f64,
+}
+
+/// The contact of `body` with a pulley of radius `radius` centred at `center` moving at
+/// `center_velocity`: each end (or the point, for length 0) inside [`end_radius`] gets
+/// ½·`law`(depth, approach speed) along its outward normal (the whole law for a point).
+#[inline]
+pub fn body_contact(
+    body: &BodyOnPulley,
+    center: V2,
+    center_velocity: V2,
+    radius: f64,
+    law: impl Fn(f64, f64) -> f64,
+) -> BodyContact {
+    let mut out = BodyContact::default();
+    let mut press = |arm: V2, share: f64, r: f64| {
+        let rel = body.position + arm - center;
+        let a2 = rel.norm_squared();
+        if a2 >= r * r {
+            return;
+        }
+        let a = a2.sqrt();
+        let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
+        let depth = r - a;
+        let v_end = body.velocity + V2::new(-body.spin * arm.y, body.spin * arm.x);
+        let approach = -(v_end - center_velocity).dot(&normal);
+        let fn_ = share * law(depth, approach);
+        if fn_ <= 0.0 {
+            return;
+        }
+        let f = normal * fn_;
+        out.force += f;
+        out.torque += arm.x * f.y - arm.y * f.x;
+        out.normal_force += fn_;
+        out.penetration = out.penetration.max(depth);
+    };
+    if body.length > 0.0 {
+        let (s, c) = body.angle.sin_cos();
+        let half = V2::new(c, s) * (0.5 * body.length);
+        let r = end_radius(body.length, radius);
+        press(-half, 0.5, r);
+        press(half, 0.5, r);
+    } else {
+        press(V2::zeros(), 1.0, radius);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_chord_on_its_circle_subtends_its_arc() {
+        let (l, r) = (0.3, 1.0);
+        let re = end_radius(l, r);
+        // Chord of length l on re subtends 2·asin(l/2re) = l/r.
+        assert!((2.0 * (0.5 * l / re).asin() - l / r).abs() < 1e-14);
+        let rho = contact_radius(l, r);
+        assert!((rho - (re * re - 0.25 * l * l).sqrt()).abs() < 1e-14);
+        assert!((rho - (r - l * l / (12.0 * r))).abs() < 1e-4 * l * l);
+    }
+
+    #[test]
+    fn a_tilted_body_is_turned_back() {
+        let (l, r, k) = (0.1, 1.0, 1e6);
+        let rho = contact_radius(l, r);
+        let body = |angle: f64, depth: f64| BodyOnPulley {
+            position: V2::new(0.0, rho - depth),
+            velocity: V2::zeros(),
+            angle,
+            spin: 0.0,
+            length: l,
+        };
+        let law = |d: f64, _: f64| k * d;
+        let level = body_contact(&body(0.0, 1e-6), V2::zeros(), V2::zeros(), r, law);
+        assert!((level.normal_force - k * 1e-6).abs() < 1e-6 * k * 1e-6 + 1e-9);
+        assert!(level.torque.abs() < 1e-12);
+        assert!(level.force.x.abs() < 1e-12 && level.force.y > 0.0);
+        let tilted = body_contact(&body(0.01, 1e-6), V2::zeros(), V2::zeros(), r, law);
+        assert!(tilted.torque < 0.0, "{tilted:?}");
+        let other = body_contact(&body(-0.01, 1e-6), V2::zeros(), V2::zeros(), r, law);
+        assert!(other.torque > 0.0);
+        let clear = body_contact(&body(0.0, -1e-6), V2::zeros(), V2::zeros(), r, law);
+        assert_eq!(clear.normal_force, 0.0);
+    }
+}
