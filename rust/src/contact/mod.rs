@@ -244,13 +244,10 @@ pub fn pulley_body_contact(
         force[i] += c.force;
         torque[i] += c.torque;
         on_pulley -= c.force;
-        let norm = c.force.norm();
+        let rel = x[i] - body.center;
+        let a = rel.norm();
         out.node.push(i);
-        out.normal.push(if norm > 0.0 {
-            c.force / norm
-        } else {
-            V2::new(1.0, 0.0)
-        });
+        out.normal.push(if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) });
         out.normal_force.push(c.normal_force);
         out.penetration.push(c.penetration);
     }

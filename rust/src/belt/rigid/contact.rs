@@ -90,8 +90,11 @@ pub struct BodyContact {
 }
 
 /// The contact of `body` with a pulley of radius `radius` centred at `center` moving at
-/// `center_velocity`: each end (or the point, for length 0) inside [`end_radius`] gets
-/// ½·`law`(depth, approach speed) along its outward normal (the whole law for a point).
+/// `center_velocity`. A body rests on the drum's tangent line under its mass centre, at
+/// [`contact_radius`] ρ: with n the outward unit vector from the pulley's centre through
+/// the mass centre, each end (at ±h from it) lies `depth` = ρ − (x ± h − c)·n inside
+/// that line and gets ½·`law`(depth, its approach speed along n) along n. A point (length
+/// 0) gets the whole law at its depth under the circle of radius R.
 #[inline]
 pub fn body_contact(
     body: &BodyOnPulley,
@@ -101,15 +104,14 @@ pub fn body_contact(
     law: impl Fn(f64, f64) -> f64,
 ) -> BodyContact {
     let mut out = BodyContact::default();
-    let mut press = |arm: V2, share: f64, r: f64| {
-        let rel = body.position + arm - center;
-        let a2 = rel.norm_squared();
-        if a2 >= r * r {
+    let rel = body.position - center;
+    let a = rel.norm();
+    let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
+    let mut press = |arm: V2, share: f64, line: f64| {
+        let depth = line - (rel + arm).dot(&normal);
+        if depth <= 0.0 {
             return;
         }
-        let a = a2.sqrt();
-        let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
-        let depth = r - a;
         let v_end = body.velocity + V2::new(-body.spin * arm.y, body.spin * arm.x);
         let approach = -(v_end - center_velocity).dot(&normal);
         let fn_ = share * law(depth, approach);
@@ -125,9 +127,9 @@ pub fn body_contact(
     if body.length > 0.0 {
         let (s, c) = body.angle.sin_cos();
         let half = V2::new(c, s) * (0.5 * body.length);
-        let r = end_radius(body.length, radius);
-        press(-half, 0.5, r);
-        press(half, 0.5, r);
+        let rho = contact_radius(body.length, radius);
+        press(-half, 0.5, rho);
+        press(half, 0.5, rho);
     } else {
         press(V2::zeros(), 1.0, radius);
     }
