@@ -208,11 +208,11 @@ pub fn pulley_contact_law(
 }
 
 /// The rigid-body belt's contact with one pulley ([`crate::belt::rigid::contact`]): each
-/// body in the window touches it with its two ends (an open belt's end points as points),
-/// each end taking ½·`law`(depth, approach); the force and its moment go to `force` and
-/// `torque`, and each body in contact is recorded in `out` with its ends' summed normal
-/// force and the direction of their resultant, for the friction solve. Returns the
-/// resultant force on the pulley.
+/// body in the window rests on it with its two ends (an open belt's end points as points),
+/// each end taking ½·`law`(depth, approach) along the radial through the mass centre; the
+/// force and its moment go to `force` and `torque`, and each body in contact is recorded
+/// in `out` with its ends' summed normal force and that radial, for the friction solve.
+/// Returns the resultant force on the pulley.
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_body_contact(
     window: &ContactWindow,

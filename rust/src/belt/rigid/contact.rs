@@ -1,34 +1,45 @@
 //! A rigid body lying on a pulley: the contact law of a chord on a circle.
 //!
-//! The belt on a drum of radius R is an arc; a rigid body of length l stands for l/R of
-//! it. Kubas (section 2.1) touches the pulley at the mass centre. That leaves the body free
-//! to turn about its mass centre on the drum (neither the normal force, radial through the
-//! centre, nor the friction, along the tangent there, has a moment about it), and a chain of
-//! such bodies on a wrap has one motion the drum does not resist: neighbouring bodies
+//! The belt on a drum of radius R is an arc; a rigid body of length l stands for a = l/R
+//! of it. Kubas (section 2.1) touches the pulley at the mass centre, along the radial
+//! there. That leaves a body free to turn about its mass centre on the drum (neither the
+//! normal force nor the friction along the tangent has a moment about it), and a chain of
+//! such bodies on a wrap has a motion that the drum does not resist: neighbouring bodies
 //! turning opposite ways (a zig-zag whose joints go alternately in and out), held only by
-//! the tension. Sliding friction feeds it (measured on the sliding capstan rig of
-//! `tests/test_capstan.py`: from 0.5 to 20 mrad in 10 ms, the belt thrown off the sheave),
-//! and it spoils the capstan law.
+//! the tension. Sliding friction feeds it: on the sliding capstan rig of
+//! `tests/test_capstan.py` (θ = π/2) it grew from 0.5 to 20 mrad in 10 ms and threw the
+//! belt off the sheave.
 //!
-//! Here a body touches the pulley with its two **ends**, as a chord whose ends rest on the
-//! circle: each end is a penalty contact on a circle of radius
-//! R_e = l / (2·sin(l/2R)), on which a chord of length l subtends exactly l/R (so the
-//! polygon of bodies holds the arc's length: no a²/12 excess of the circumscribed polygon,
-//! no a²/24 deficit of the inscribed one), with the outward normal at the end. An end
-//! pressed in pushes that end out, so a body cannot turn on the drum without one end
-//! digging in: the zig-zag meets the contact stiffness. Under tension T the joint between
-//! two bodies turns the tension by the angle a = l/R between their axes and presses on the
-//! drum with T·a, shared by the two ends that meet there: the normal force of the capstan,
-//! as at the node belt's nodes.
+//! Here a body rests on the drum with its two **ends**, on the drum's tangent line under
+//! its mass centre: with n the outward unit vector from the pulley's centre through the
+//! mass centre, an end at x ± h is (ρ − (x ± h − c)·n) inside that line and is pushed out
+//! along n with half the contact law at that depth. A body pressed in as a whole carries
+//! the whole law (the linear penalty: k/2 per end, k as a node); a body turned by δ on the
+//! drum has one end (l/2)·sin δ deeper and is turned back, so the zig-zag meets the
+//! contact stiffness (a body turning on its end contacts: ω² = 3k/m, in the stable step).
 //!
-//! Each end takes half the law's force at its depth (`law`, N), so a body pressed in as a
-//! whole carries the law's force, as a node does (the linear penalty: k/2 per end). The
-//! friction acts on the body as one contact at its mass centre with the ends' summed
-//! normal force N_a + N_b and the direction of their resultant (the chord's normal): it
-//! pulls along the chord, with no moment about the mass centre. The mass centre of a body
-//! whose ends rest on R_e lies at ρ = R_e·cos(l/2R) = (l/2)·cot(l/2R) ([`contact_radius`]):
-//! a body turning with the pulley moves its mass centre at ω·ρ, the surface speed the
-//! friction of a body is measured against, and its lever about the pulley's centre.
+//! *The line's distance ρ.* A chord of length l whose ends lie on the circle of radius
+//! R_e = l/(2·sin(a/2)) subtends exactly a; its mass centre lies at
+//! ρ = R_e·cos(a/2) = (l/2)·cot(a/2) = R − l²/(12R) − … ([`contact_radius`]). Bodies resting
+//! at ρ form the polygon whose sides are l and whose corners turn by a, so a wrap of θ holds
+//! θ/a bodies, exactly the arc's length of belt: neither the a²/12 excess of the polygon
+//! circumscribed about R (Kubas's contact at R) nor the a²/24 deficit of the inscribed one
+//! (the node belt).
+//!
+//! *Forces along n only.* All the contact forces of a body act along n, the radial
+//! through its mass centre, so they have no component along the tangent t there. The
+//! end forces of a chord on the circle itself (radial at each end) would have one,
+//! (N_a − N_b)·sin(a/2), stiffly coupled to the body's turning: measured on the onset rig,
+//! it made the bodies of the slip arc ring at 14 kHz with ±0.3 mm/s, so the creep law's
+//! stick limit met µs·N and dropped them to µk (the friction averaged 0.83–0.98 of µ·N on
+//! the slip arcs, and the creep onset came near e^{µk θ}). Measured on the tangent line
+//! they rest steadily (±0.0005 mm/s), at µs·N.
+//!
+//! *Friction* acts on the body as one contact at its mass centre along t, with the ends'
+//! summed normal force: no moment about the mass centre. A body turning with the pulley
+//! moves its mass centre at ω·ρ: the surface speed the friction of a body is measured
+//! against, and the lever of its friction about the pulley's centre
+//! (`Model::friction_radius`).
 //!
 //! An open belt's end points (length 0) are points and touch the circle of radius R.
 
@@ -36,21 +47,9 @@ use nalgebra::Vector2;
 
 type V2 = Vector2<f64>;
 
-/// R_e = l / (2·sin(l/2R)): the circle on which the ends of a chord of length `length`
-/// subtend `length`/`radius` of arc, m (`radius` for a point, length 0).
-#[inline]
-pub fn end_radius(length: f64, radius: f64) -> f64 {
-    let half = 0.5 * length / radius;
-    if half > 0.0 {
-        0.5 * length / half.sin()
-    } else {
-        radius
-    }
-}
-
 /// ρ = (l/2)·cot(l/2R) = R − l²/(12R) − …: the distance from the pulley's centre of the
-/// mass centre of a body of length `length` whose ends rest on [`end_radius`], m
-/// (`radius` for a point).
+/// mass centre of a body of length `length` whose ends lie on the circle on which it
+/// subtends `length`/`radius`, m (`radius` for a point).
 #[inline]
 pub fn contact_radius(length: f64, radius: f64) -> f64 {
     let half = 0.5 * length / radius;
@@ -143,8 +142,8 @@ mod tests {
     #[test]
     fn a_chord_on_its_circle_subtends_its_arc() {
         let (l, r) = (0.3, 1.0);
-        let re = end_radius(l, r);
-        // Chord of length l on re subtends 2·asin(l/2re) = l/r.
+        // The chord of length l whose ends lie on re = l/(2 sin(l/2r)) subtends l/r.
+        let re = 0.5 * l / (0.5 * l / r).sin();
         assert!((2.0 * (0.5 * l / re).asin() - l / r).abs() < 1e-14);
         let rho = contact_radius(l, r);
         assert!((rho - (re * re - 0.25 * l * l).sqrt()).abs() < 1e-14);
