@@ -209,9 +209,9 @@ pub fn pulley_contact_law(
 
 /// The rigid-body belt's contact with one pulley ([`crate::belt::rigid::contact`]): each
 /// body in the window rests on it with its two ends (an open belt's end points as points),
-/// each end taking ½·`law`(depth, approach) along the radial through the mass centre; the
-/// force and its moment go to `force` and `torque`, and each body in contact is recorded
-/// in `out` with its ends' summed normal force and that radial, for the friction solve.
+/// each end taking ½·`law`(depth, approach) along the body's normal; the force and its
+/// moment go to `force` and `torque`, and each body in contact is recorded in `out` with
+/// its ends' summed normal force and that normal, for the friction solve.
 /// Returns the resultant force on the pulley.
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_body_contact(
@@ -244,10 +244,8 @@ pub fn pulley_body_contact(
         force[i] += c.force;
         torque[i] += c.torque;
         on_pulley -= c.force;
-        let rel = x[i] - body.center;
-        let a = rel.norm();
         out.node.push(i);
-        out.normal.push(if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) });
+        out.normal.push(c.normal);
         out.normal_force.push(c.normal_force);
         out.penetration.push(c.penetration);
     }

@@ -86,14 +86,20 @@ pub struct BodyContact {
     pub normal_force: f64,
     /// Deepest penetration of an end, m.
     pub penetration: f64,
+    /// Direction of the contact forces: the body's normal (perpendicular to its axis,
+    /// outwards), or a point's radial; its perpendicular is the friction's direction.
+    pub normal: V2,
 }
 
 /// The contact of `body` with a pulley of radius `radius` centred at `center` moving at
-/// `center_velocity`. A body rests on the drum's tangent line under its mass centre, at
-/// [`contact_radius`] ρ: with n the outward unit vector from the pulley's centre through
-/// the mass centre, each end (at ±h from it) lies `depth` = ρ − (x ± h − c)·n inside
-/// that line and gets ½·`law`(depth, its approach speed along n) along n. A point (length
-/// 0) gets the whole law at its depth under the circle of radius R.
+/// `center_velocity` (module docs). With n the outward unit vector from the pulley's
+/// centre through the mass centre and ν the body's own normal (perpendicular to its axis,
+/// outwards), each end e (at ±h from the mass centre) lies
+/// depth = min(ρ − (e − c)·n, (R_e − |e − c|)/cos(a/2))
+/// inside the drum (the tangent line under the mass centre, at [`contact_radius`] ρ, and
+/// the circle R_e = ρ/cos(a/2) through the corners of the bodies' polygon, a = l/R) and
+/// is pushed along ν with ½·`law`(depth, its approach speed along ν). A point (length 0)
+/// gets the whole law at its depth under the circle of radius R, along its radial.
 #[inline]
 pub fn body_contact(
     body: &BodyOnPulley,
@@ -105,9 +111,8 @@ pub fn body_contact(
     let mut out = BodyContact::default();
     let rel = body.position - center;
     let a = rel.norm();
-    let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
-    let mut press = |arm: V2, share: f64, line: f64| {
-        let depth = line - (rel + arm).dot(&normal);
+    let radial = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
+    let mut press = |arm: V2, share: f64, depth: f64, normal: V2| {
         if depth <= 0.0 {
             return;
         }
@@ -127,10 +132,21 @@ pub fn body_contact(
         let (s, c) = body.angle.sin_cos();
         let half = V2::new(c, s) * (0.5 * body.length);
         let rho = contact_radius(body.length, radius);
-        press(-half, 0.5, rho);
-        press(half, 0.5, rho);
+        let cos_half = (0.5 * body.length / radius).cos();
+        let corner = rho / cos_half;
+        let mut nu = V2::new(-s, c);
+        if nu.dot(&radial) < 0.0 {
+            nu = -nu;
+        }
+        out.normal = nu;
+        for arm in [-half, half] {
+            let e = rel + arm;
+            let depth = (rho - e.dot(&radial)).min((corner - e.norm()) / cos_half);
+            press(arm, 0.5, depth, nu);
+        }
     } else {
-        press(V2::zeros(), 1.0, radius);
+        out.normal = radial;
+        press(V2::zeros(), 1.0, radius - a, radial);
     }
     out
 }
