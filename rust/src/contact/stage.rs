@@ -43,16 +43,9 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.tension,
                 contacts,
             )
-        } else if m.is_rigid() {
-            // Rigid bodies touch with their two ends (`belt::rigid::contact`).
-            let nonlinear = p.nonlinear.map(|nl| NonlinearContact {
-                damping: effects.damped(nl.damping),
-                ..nl.scaled(cx.contact_scale)
-            });
-            let normal_force = |depth: f64, rate: f64| match &nonlinear {
-                Some(nl) => nl.normal_force(depth, rate),
-                None => super::penalty(&body, depth, rate),
-            };
+        } else if m.rests_on_ends(j) {
+            // Rigid bodies rest on the pulley with their two ends (`belt::rigid::contact`).
+            let normal_force = |depth: f64, rate: f64| super::penalty(&body, depth, rate);
             let bodies = (x, v, &s.body_angle[..], &s.body_spin[..], &m.rest_length[..]);
             super::pulley_body_contact(
                 window,
@@ -65,7 +58,8 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
             )
         } else {
             // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
-            // with wrap contact).
+            // with wrap contact; rigid bodies under it touch at their mass centres, as in
+            // Kubas's section 2.1).
             let nonlinear = p.nonlinear.map(|nl| NonlinearContact {
                 damping: effects.damped(nl.damping),
                 ..nl.scaled(cx.contact_scale)

@@ -35,11 +35,12 @@ impl Model {
         // A rigid body turning on its two end contacts (k/2 each at the lever l/2,
         // `belt::rigid::contact`): ω² = 2·(k/2)·(l/2)²/(m·l²/12) = 3k/m, i.e. 3k as a
         // stiffness on its translation (and 3c for the damping).
-        let turning = if self.is_rigid() { 3.0 } else { 1.0 };
         let k_contact = self
             .pulleys
             .iter()
-            .map(|p| {
+            .enumerate()
+            .map(|(j, p)| {
+                let turning = if self.rests_on_ends(j) { 3.0 } else { 1.0 };
                 let (k, c) = p.contact_bound(contact_scale);
                 (turning * k, turning * c)
             })

@@ -157,13 +157,14 @@ mod tests {
 
     #[test]
     fn a_chord_on_its_circle_subtends_its_arc() {
-        let (l, r) = (0.3, 1.0);
+        let (l, r): (f64, f64) = (0.3, 1.0);
         // The chord of length l whose ends lie on re = l/(2 sin(l/2r)) subtends l/r.
         let re = 0.5 * l / (0.5 * l / r).sin();
         assert!((2.0 * (0.5 * l / re).asin() - l / r).abs() < 1e-14);
         let rho = contact_radius(l, r);
         assert!((rho - (re * re - 0.25 * l * l).sqrt()).abs() < 1e-14);
-        assert!((rho - (r - l * l / (12.0 * r))).abs() < 1e-4 * l * l);
+        // ρ = R − l²/(12R) − l⁴/(720R³) − …
+        assert!((rho - (r - l * l / (12.0 * r))).abs() < l.powi(4) / (500.0 * r.powi(3)));
     }
 
     #[test]
@@ -184,6 +185,9 @@ mod tests {
         assert!(level.force.x.abs() < 1e-12 && level.force.y > 0.0);
         let tilted = body_contact(&body(0.01, 1e-6), V2::zeros(), V2::zeros(), r, law);
         assert!(tilted.torque < 0.0, "{tilted:?}");
+        // Along the body's normal: nothing along its axis, which carries the tension.
+        let axis = V2::new(0.01f64.cos(), 0.01f64.sin());
+        assert!(tilted.force.dot(&axis).abs() < 1e-12 * tilted.force.norm());
         let other = body_contact(&body(-0.01, 1e-6), V2::zeros(), V2::zeros(), r, law);
         assert!(other.torque > 0.0);
         let clear = body_contact(&body(0.0, -1e-6), V2::zeros(), V2::zeros(), r, law);
