@@ -84,7 +84,9 @@ pub struct BodyContact {
     pub torque: f64,
     /// Summed normal force of the ends, N (≥ 0; 0: no contact).
     pub normal_force: f64,
-    /// Deepest penetration of an end, m.
+    /// Penetration, m: for a body the root mean square of its ends' depths over both ends
+    /// (0 for an end off the drum), so that ½·k·d² is the linear penalty's energy
+    /// Σ ½·(k/2)·dₑ²; for a point its depth.
     pub penetration: f64,
     /// Direction of the contact forces: the body's normal (perpendicular to its axis,
     /// outwards), or a point's radial; its perpendicular is the friction's direction.
@@ -116,6 +118,7 @@ pub fn body_contact(
         if depth <= 0.0 {
             return;
         }
+        out.penetration += share * depth * depth;
         let v_end = body.velocity + V2::new(-body.spin * arm.y, body.spin * arm.x);
         let approach = -(v_end - center_velocity).dot(&normal);
         let fn_ = share * law(depth, approach);
@@ -126,7 +129,6 @@ pub fn body_contact(
         out.force += f;
         out.torque += arm.x * f.y - arm.y * f.x;
         out.normal_force += fn_;
-        out.penetration = out.penetration.max(depth);
     };
     if body.length > 0.0 {
         let (s, c) = body.angle.sin_cos();
@@ -148,6 +150,7 @@ pub fn body_contact(
         out.normal = radial;
         press(V2::zeros(), 1.0, radius - a, radial);
     }
+    out.penetration = out.penetration.sqrt();
     out
 }
 
