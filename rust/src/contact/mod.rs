@@ -207,16 +207,30 @@ pub fn pulley_contact_law(
     on_pulley
 }
 
+/// The rigid-body belt's points as [`pulley_body_contact`] reads them, one entry each.
+#[derive(Debug, Clone, Copy)]
+pub struct Bodies<'a> {
+    /// Mass centres (an open belt's end points), m.
+    pub position: &'a [V2],
+    /// Their velocities, m/s.
+    pub velocity: &'a [V2],
+    /// Axis angles, rad.
+    pub angle: &'a [f64],
+    /// Angular velocities, rad/s.
+    pub spin: &'a [f64],
+    /// Body lengths, m (0 for an end point).
+    pub length: &'a [f64],
+}
+
 /// The rigid-body belt's contact with one pulley ([`crate::belt::rigid::contact`]): each
 /// body in the window rests on it with its two ends (an open belt's end points as points),
 /// each end taking ½·`law`(depth, approach) along the body's normal; the force and its
 /// moment go to `force` and `torque`, and each body in contact is recorded in `out` with
 /// its ends' summed normal force and that normal, for the friction solve.
 /// Returns the resultant force on the pulley.
-#[allow(clippy::too_many_arguments)]
 pub fn pulley_body_contact(
     window: &ContactWindow,
-    bodies: (&[V2], &[V2], &[f64], &[f64], &[f64]),
+    bodies: &Bodies<'_>,
     body: &PulleyBody,
     force: &mut [V2],
     torque: &mut [f64],
@@ -224,7 +238,13 @@ pub fn pulley_body_contact(
     law: impl Fn(f64, f64) -> f64,
 ) -> V2 {
     use crate::belt::rigid::contact::{body_contact, BodyOnPulley};
-    let (x, v, angle, spin, length) = bodies;
+    let Bodies {
+        position: x,
+        velocity: v,
+        angle,
+        spin,
+        length,
+    } = *bodies;
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();

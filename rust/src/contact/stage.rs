@@ -46,16 +46,16 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
         } else if m.rests_on_ends(j) {
             // Rigid bodies rest on the pulley with their two ends (`belt::rigid::contact`).
             let normal_force = |depth: f64, rate: f64| super::penalty(&body, depth, rate);
-            let bodies = (
-                x,
-                v,
-                &s.body_angle[..],
-                &s.body_spin[..],
-                &m.rest_length[..],
-            );
+            let bodies = super::Bodies {
+                position: x,
+                velocity: v,
+                angle: &s.body_angle,
+                spin: &s.body_spin,
+                length: &m.rest_length,
+            };
             super::pulley_body_contact(
                 window,
-                bodies,
+                &bodies,
                 &body,
                 &mut sc.force,
                 &mut sc.body_torque,
