@@ -10,11 +10,12 @@
 //! `tests/test_capstan.py` (θ = π/2) it grew from 0.5 to 20 mrad in 10 ms and threw the
 //! belt off the sheave.
 //!
-//! Here a body rests on the drum with its two **ends**, on the drum's tangent line under
-//! its mass centre: with n the outward unit vector from the pulley's centre through the
-//! mass centre, an end at x ± h is (ρ − (x ± h − c)·n) inside that line and is pushed out
-//! along n with half the contact law at that depth. A body pressed in as a whole carries
-//! the whole law (the linear penalty: k/2 per end, k as a node); a body turned by δ on the
+//! Here a body rests on the drum with its two **ends**. Each end e is (R_e − |e − c|)/cos(a/2)
+//! inside the drum, R_e = ρ/cos(a/2) the circle through the corners of the bodies'
+//! polygon (for a body resting on the drum: its end's depth below the tangent line at ρ
+//! under its mass centre, to first order), and is pushed along the body's own normal ν
+//! with half the contact law at that depth. A body pressed in as a whole carries the
+//! whole law (the linear penalty: k/2 per end, k as a node); a body turned by δ on the
 //! drum has one end (l/2)·sin δ deeper and is turned back, so the zig-zag meets the
 //! contact stiffness (a body turning on its end contacts: ω² = 3k/m, in the stable step).
 //!
@@ -26,20 +27,26 @@
 //! circumscribed about R (Kubas's contact at R) nor the a²/24 deficit of the inscribed one
 //! (the node belt).
 //!
-//! *Forces along n only.* All the contact forces of a body act along n, the radial
-//! through its mass centre, so they have no component along the tangent t there. The
-//! end forces of a chord on the circle itself (radial at each end) would have one,
-//! (N_a − N_b)·sin(a/2), stiffly coupled to the body's turning: measured on the onset rig,
-//! it made the bodies of the slip arc ring at 14 kHz with ±0.3 mm/s, so the creep law's
-//! stick limit met µs·N and dropped them to µk (the friction averaged 0.83–0.98 of µ·N on
-//! the slip arcs, and the creep onset came near e^{µk θ}). Measured on the tangent line
-//! they rest steadily (±0.0005 mm/s), at µs·N.
+//! *Forces along the body's normal.* No contact force has a component along the body's
+//! axis, which carries the tension. Radial forces at the ends (the exact normals of a
+//! chord on a circle) would have one, (N_a − N_b)·sin(a/2), stiffly coupled to the body's
+//! turning: measured on the onset rig, it made the bodies of the slip arc ring at 14 kHz
+//! with ±0.3 mm/s, so the creep law's stick limit met µs·N and dropped them to µk (the
+//! friction averaged 0.83–0.98 of µ·N on the slip arcs, and the creep onset came near
+//! e^{µk θ}); along the body's normal they rest steadily (±0.0005 mm/s), at µs·N. Radial
+//! forces through the mass centre push a span's body next to the wrap along its axis
+//! (1 % more tension in a frictionless drive's arcs than in its spans). The price: the
+//! forces are not the gradient of the penalty energy (they differ by the body's tilt
+//! against the drum, milliradians); no law without the axial part is, for a finite body
+//! resting on two points.
 //!
-//! *Friction* acts on the body as one contact at its mass centre along t, with the ends'
-//! summed normal force: no moment about the mass centre. A body turning with the pulley
-//! moves its mass centre at ω·ρ: the surface speed the friction of a body is measured
-//! against, and the lever of its friction about the pulley's centre
-//! (`Model::friction_radius`).
+//! *Friction* acts on the body as one contact at its mass centre along its axis, with
+//! the ends' summed normal force: no moment about the mass centre. A body turning with the
+//! pulley moves its mass centre at ω·ρ: the surface speed the friction of a body is
+//! measured against, and the lever of its friction about the pulley's centre
+//! (`Model::friction_radius`). Only a body resting on both ends is a friction contact
+//! (`contact::pulley_body_contact`): one landing or leaving, its mass centre off ρ, would
+//! slide at ω·(r − ρ).
 //!
 //! An open belt's end points (length 0) are points and touch the circle of radius R.
 
@@ -88,6 +95,8 @@ pub struct BodyContact {
     /// (0 for an end off the drum), so that ½·k·d² is the linear penalty's energy
     /// Σ ½·(k/2)·dₑ²; for a point its depth.
     pub penetration: f64,
+    /// Number of ends pressing (0, 1 or 2; a point: 0 or 1).
+    pub ends: u8,
     /// Direction of the contact forces: the body's normal (perpendicular to its axis,
     /// outwards), or a point's radial; its perpendicular is the friction's direction.
     pub normal: V2,
@@ -97,10 +106,11 @@ pub struct BodyContact {
 /// `center_velocity` (module docs). With n the outward unit vector from the pulley's
 /// centre through the mass centre and ν the body's own normal (perpendicular to its axis,
 /// outwards), each end e (at ±h from the mass centre) lies
-/// depth = min(ρ − (e − c)·n, (R_e − |e − c|)/cos(a/2))
-/// inside the drum (the tangent line under the mass centre, at [`contact_radius`] ρ, and
-/// the circle R_e = ρ/cos(a/2) through the corners of the bodies' polygon, a = l/R) and
-/// is pushed along ν with ½·`law`(depth, its approach speed along ν). A point (length 0)
+/// depth = (R_e − |e − c|)/cos(a/2)
+/// inside the drum (the circle R_e = ρ/cos(a/2) through the corners of the bodies'
+/// polygon, ρ = [`contact_radius`], a = l/R; for a body resting on the drum this is its
+/// depth below the tangent line at ρ under its mass centre, to first order) and is pushed
+/// along ν with ½·`law`(depth, its approach speed along ν). A point (length 0)
 /// gets the whole law at its depth under the circle of radius R, along its radial.
 #[inline]
 pub fn body_contact(
@@ -129,6 +139,7 @@ pub fn body_contact(
         out.force += f;
         out.torque += arm.x * f.y - arm.y * f.x;
         out.normal_force += fn_;
+        out.ends += 1;
     };
     if body.length > 0.0 {
         let (s, c) = body.angle.sin_cos();
@@ -143,7 +154,7 @@ pub fn body_contact(
         out.normal = nu;
         for arm in [-half, half] {
             let e = rel + arm;
-            let depth = (rho - e.dot(&radial)).min((corner - e.norm()) / cos_half);
+            let depth = (corner - e.norm()) / cos_half;
             press(arm, 0.5, depth, nu);
         }
     } else {
