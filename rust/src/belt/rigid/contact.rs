@@ -124,13 +124,16 @@ pub fn body_contact(
     let rel = body.position - center;
     let a = rel.norm();
     let radial = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
-    let mut press = |arm: V2, share: f64, depth: f64, normal: V2| {
+    // `rate`: the direction (scaled) whose dot product with the point's velocity relative
+    // to the pulley's centre is the depth's rate: the radial at the point (over
+    // cos(a/2) for a body's end), so that a body turning with the pulley has none.
+    let mut press = |arm: V2, share: f64, depth: f64, normal: V2, rate: V2| {
         if depth <= 0.0 {
             return;
         }
         out.penetration += share * depth * depth;
         let v_end = body.velocity + V2::new(-body.spin * arm.y, body.spin * arm.x);
-        let approach = -(v_end - center_velocity).dot(&normal);
+        let approach = -(v_end - center_velocity).dot(&rate);
         let fn_ = share * law(depth, approach);
         if fn_ <= 0.0 {
             return;
@@ -154,12 +157,14 @@ pub fn body_contact(
         out.normal = nu;
         for arm in [-half, half] {
             let e = rel + arm;
-            let depth = (corner - e.norm()) / cos_half;
-            press(arm, 0.5, depth, nu);
+            let r = e.norm();
+            let depth = (corner - r) / cos_half;
+            let rate = if r > 0.0 { e / (r * cos_half) } else { nu };
+            press(arm, 0.5, depth, nu, rate);
         }
     } else {
         out.normal = radial;
-        press(V2::zeros(), 1.0, radius - a, radial);
+        press(V2::zeros(), 1.0, radius - a, radial, radial);
     }
     out.penetration = out.penetration.sqrt();
     out
