@@ -69,10 +69,10 @@ def theory() -> beltrs.analytic.CreepDrive:
 def steady(request: pytest.FixtureRequest) -> beltrs.Result:
     """The drive in steady running, with either belt formulation. The rigid-body belt
     (200 bodies resting on the pulleys with their ends at rho = (l/2) cot(l/2R), whose
-    polygon holds the arcs' length: docs/kubas.md; about 50 s of wall) measured 2026-11-23:
-    driven speed -0.03 %, T1 +0.02 %, T2 -0.18 %, slip arcs +1.3 % (drive) and +0.5 %
-    (driven), utilisation at most 0.024 on the adhesion arcs and 0.996-0.997 (median) on
-    the slip arcs."""
+    polygon holds the arcs' length: docs/kubas.md; 50-75 s of wall) measured 2026-11-23:
+    driven speed -0.017 %, T1 +0.04 %, T2 -0.02 %, slip arcs +0.55 % (drive) and +0.59 %
+    (driven), utilisation at most 0.015 on the adhesion arcs and 0.996 (median) on the
+    slip arcs."""
     scene = drive_scene()
     scene.belt.formulation = request.param
     sim = Simulation(scene)

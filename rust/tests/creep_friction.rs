@@ -336,7 +336,8 @@ fn rkf45_and_central_differences_agree_with_creep_friction() {
     // differences at a tenth of their stable step and below, so both integrators solve
     // the same ODE and central differences converge to RKF45 as their step falls
     // (measured: 3.9·10⁻³, 8.1·10⁻⁵ and 1.6·10⁻⁵ of the pulley speeds at 0.5, 0.1 and
-    // 0.02 of the stable step, with the bodies resting on their ends (`belt::rigid::contact`),
+    // 0.02 of the stable step, with the bodies resting on their ends (`belt::rigid::contact`,
+    // measured one variant before the final law),
     // whose turning on the drum is the fastest mode, 3k/m: at half the stable step central
     // differences resolve it least; 9·10⁻⁴, 1.1·10⁻⁴ and 2.3·10⁻⁵ with the earlier contact
     // at the mass centres; a tolerance of about twice that). An unrelaxed start is no test: the belt, 1 % short, bounces on

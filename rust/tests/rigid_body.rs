@@ -81,7 +81,7 @@ fn rigid_and_node_belts_relax_to_the_continuum_tension_at_second_order() {
     // with their ends, their mass centres at ρ = (l/2)·cot(θ/2) (`belt::rigid::contact`),
     // where their polygon holds exactly the arc's length: no θ² term of that kind is
     // left. Measured (60, 120 bodies): node −14 %, −3.4 % (order 2.03); rigid +0.48 %,
-    // +0.095 % (order 2.35; with the contact at the mass centres on the rim the rigid
+    // +0.095 % (order 2.35, a variant of the ends' contact one step before the final one; with the contact at the mass centres on the rim the rigid
     // error was the circumscribed polygon's θ²/12, about twice the node belt's).
     let mut errors = Vec::new();
     for f in [Formulation::NodeKelvinVoigt, Formulation::RigidBody] {
