@@ -323,7 +323,8 @@ pub fn pulley_creep_friction(
         let i = contacts.node[k];
         let t = perp(contacts.normal[k]);
         let normal = contacts.normal_force[k];
-        let speed = r * pulley.omega + t.dot(&pulley.center_velocity) - t.dot(&v[i]);
+        let lever = contacts.lever.get(k).copied().unwrap_or(r);
+        let speed = lever * pulley.omega + t.dot(&pulley.center_velocity) - t.dot(&v[i]);
         let idx = i * at.stride + at.column;
         let creep = memory[idx];
         let mut f = law.coefficient(creep, speed) * normal;

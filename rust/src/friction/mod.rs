@@ -162,7 +162,8 @@ pub fn pulley_stick_friction(
     for k in 0..nc {
         let i = contacts.node[k];
         let t = perp(contacts.normal[k]);
-        let vn = t.dot(&(v[i] - pulley.center_velocity)) - r * pulley.omega;
+        let lever = contacts.lever.get(k).copied().unwrap_or(r);
+        let vn = t.dot(&(v[i] - pulley.center_velocity)) - lever * pulley.omega;
         scratch.free.push(mass[i] * vn / dt + t.dot(&force[i]));
         scratch.sticking.push(true);
         scratch.force.push(0.0);
