@@ -298,7 +298,9 @@ class Simulation:
         return np.asarray(self._core.load_zones())
 
     def state(self) -> dict[str, Any]:
-        """Current state as NumPy arrays (positions m, half-step velocities m/s, ...)."""
+        """Current state as NumPy arrays (positions m, half-step velocities m/s, ...;
+        ``body_angle`` (rad) and ``body_spin`` (rad/s) of the rigid-body belt's points,
+        empty for the node belt)."""
         return dict(self._core.state())
 
     def tensions(self) -> np.ndarray:

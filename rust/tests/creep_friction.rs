@@ -335,8 +335,11 @@ fn rkf45_and_central_differences_agree_with_creep_friction() {
     // damping (up to 1.5·µs·N/Δv ≈ 4700 N·s/m on bodies of 1.6 g) is resolved by central
     // differences at a tenth of their stable step and below, so both integrators solve
     // the same ODE and central differences converge to RKF45 as their step falls
-    // (measured: 9·10⁻⁴, 1.1·10⁻⁴ and 2.3·10⁻⁵ of the pulley speeds at 0.5, 0.1 and 0.02
-    // of the stable step; a tolerance of about twice that). An unrelaxed start is no test: the belt, 1 % short, bounces on
+    // (measured: 3.9·10⁻³, 8.1·10⁻⁵ and 1.6·10⁻⁵ of the pulley speeds at 0.5, 0.1 and
+    // 0.02 of the stable step, with the bodies resting on their ends (`belt::rigid::contact`),
+    // whose turning on the drum is the fastest mode, 3k/m: at half the stable step central
+    // differences resolve it least; 9·10⁻⁴, 1.1·10⁻⁴ and 2.3·10⁻⁵ with the earlier contact
+    // at the mass centres; a tolerance of about twice that). An unrelaxed start is no test: the belt, 1 % short, bounces on
     // the pulleys, and each separation resets a contact's memory.
     let end = 6e-3;
     let run = |integrator, fraction: f64| {
@@ -359,7 +362,7 @@ fn rkf45_and_central_differences_agree_with_creep_friction() {
         .map(|&f| gap(&run(IntegratorKind::CentralDifference, f)))
         .collect();
     assert!(gaps[2] < gaps[1] && gaps[1] < gaps[0], "{gaps:?}");
-    assert!(gaps[0] < 2e-3 && gaps[2] < 5e-5, "{gaps:?}");
+    assert!(gaps[0] < 8e-3 && gaps[2] < 5e-5, "{gaps:?}");
 }
 
 /// The contact of `one_contact` as an ODE: the point (0.01 kg, N = 100 N, the pulley at

@@ -76,10 +76,13 @@ fn static_tension(f: Formulation, n: usize) -> (f64, f64, f64) {
 fn rigid_and_node_belts_relax_to_the_continuum_tension_at_second_order() {
     // Frictionless and weightless: one tension everywhere (joints on the arcs included).
     // On an arc the node belt is the inscribed polygon of its nodes (shorter than the arc
-    // by θ²/24 per element of arc angle θ), the rigid bodies lie along the tangents at
-    // their mass centres with their joints outside the arc (longer, by about θ²/12): the
-    // static tension is low for the one and high for the other, both converging to the
-    // continuum's EA·strain at second order in θ.
+    // by θ²/24 per element of arc angle θ): its static tension is low, converging to the
+    // continuum's EA·strain at second order in θ. The rigid bodies rest on the pulleys
+    // with their ends, their mass centres at ρ = (l/2)·cot(θ/2) (`belt::rigid::contact`),
+    // where their polygon holds exactly the arc's length: no θ² term of that kind is
+    // left. Measured (60, 120 bodies): node −14 %, −3.4 % (order 2.03); rigid +0.48 %,
+    // +0.095 % (order 2.35; with the contact at the mass centres on the rim the rigid
+    // error was the circumscribed polygon's θ²/12, about twice the node belt's).
     let mut errors = Vec::new();
     for f in [Formulation::NodeKelvinVoigt, Formulation::RigidBody] {
         let mut e = Vec::new();
@@ -89,16 +92,21 @@ fn rigid_and_node_belts_relax_to_the_continuum_tension_at_second_order() {
             e.push((t - continuum) / continuum);
         }
         let order = (e[0] / e[1]).log2();
-        assert!(
-            (order - 2.0).abs() < 0.3,
-            "{f:?}: errors {e:?}, order {order}"
-        );
+        if f == Formulation::NodeKelvinVoigt {
+            assert!(
+                (order - 2.0).abs() < 0.3,
+                "{f:?}: errors {e:?}, order {order}"
+            );
+        } else {
+            // At least second order, and far below the node belt's error.
+            assert!(order > 1.8, "{f:?}: errors {e:?}, order {order}");
+        }
         errors.push(e);
     }
-    // Opposite sides: inscribed (node) low, circumscribed (rigid) high, about twice.
-    assert!(errors[0][0] < 0.0 && errors[1][0] > 0.0, "{errors:?}");
-    let ratio = -errors[1][0] / errors[0][0];
-    assert!((ratio - 2.0).abs() < 0.5, "{errors:?}");
+    assert!(errors[0][0] < 0.0, "{errors:?}");
+    for k in 0..2 {
+        assert!(errors[1][k].abs() < 0.1 * errors[0][k].abs(), "{errors:?}");
+    }
 }
 
 #[test]

@@ -207,6 +207,71 @@ pub fn pulley_contact_law(
     on_pulley
 }
 
+/// The rigid-body belt's points as [`pulley_body_contact`] reads them, one entry each.
+#[derive(Debug, Clone, Copy)]
+pub struct Bodies<'a> {
+    /// Mass centres (an open belt's end points), m.
+    pub position: &'a [V2],
+    /// Their velocities, m/s.
+    pub velocity: &'a [V2],
+    /// Axis angles, rad.
+    pub angle: &'a [f64],
+    /// Angular velocities, rad/s.
+    pub spin: &'a [f64],
+    /// Body lengths, m (0 for an end point).
+    pub length: &'a [f64],
+}
+
+/// The rigid-body belt's contact with one pulley ([`crate::belt::rigid::contact`]): each
+/// body in the window rests on it with its two ends (an open belt's end points as points),
+/// each end taking ½·`law`(depth, approach) along the body's normal; the force and its
+/// moment go to `force` and `torque`, and each body in contact is recorded in `out` with
+/// its ends' summed normal force and that normal, for the friction solve.
+/// Returns the resultant force on the pulley.
+pub fn pulley_body_contact(
+    window: &ContactWindow,
+    bodies: &Bodies<'_>,
+    body: &PulleyBody,
+    force: &mut [V2],
+    torque: &mut [f64],
+    out: &mut PulleyContacts,
+    law: impl Fn(f64, f64) -> f64,
+) -> V2 {
+    use crate::belt::rigid::contact::{body_contact, BodyOnPulley};
+    let Bodies {
+        position: x,
+        velocity: v,
+        angle,
+        spin,
+        length,
+    } = *bodies;
+    out.clear();
+    let n = x.len();
+    let mut on_pulley = V2::zeros();
+    for k in 0..window.len {
+        let i = (window.first + k) % n;
+        let b = BodyOnPulley {
+            position: x[i],
+            velocity: v[i],
+            angle: angle[i],
+            spin: spin[i],
+            length: length[i],
+        };
+        let c = body_contact(&b, body.center, body.center_velocity, body.radius, &law);
+        if c.normal_force <= 0.0 {
+            continue;
+        }
+        force[i] += c.force;
+        torque[i] += c.torque;
+        on_pulley -= c.force;
+        out.node.push(i);
+        out.normal.push(c.normal);
+        out.normal_force.push(c.normal_force);
+        out.penetration.push(c.penetration);
+    }
+    on_pulley
+}
+
 /// Wrap contact with one pulley (the default pulley contact, see [`wrap`]): every element
 /// between two nodes of the window whose path wraps the pulley is measured along that path
 /// (its chord force from the axial pass replaced, its tension written to `tension`), the

@@ -43,9 +43,29 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.tension,
                 contacts,
             )
+        } else if m.rests_on_ends(j) {
+            // Rigid bodies rest on the pulley with their two ends (`belt::rigid::contact`).
+            let normal_force = |depth: f64, rate: f64| super::penalty(&body, depth, rate);
+            let bodies = super::Bodies {
+                position: x,
+                velocity: v,
+                angle: &s.body_angle,
+                spin: &s.body_spin,
+                length: &m.rest_length,
+            };
+            super::pulley_body_contact(
+                window,
+                &bodies,
+                &body,
+                &mut sc.force,
+                &mut sc.body_torque,
+                contacts,
+                normal_force,
+            )
         } else {
             // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
-            // with wrap contact).
+            // with wrap contact; rigid bodies under it touch at their mass centres, as in
+            // Kubas's section 2.1).
             let nonlinear = p.nonlinear.map(|nl| NonlinearContact {
                 damping: effects.damped(nl.damping),
                 ..nl.scaled(cx.contact_scale)

@@ -72,7 +72,7 @@ pub fn holding_torque(m: &Model, s: &State, sc: &Scratch, j: usize) -> f64 {
         let tangential: f64 = (0..c.len())
             .map(|k| perp(c.normal[k]).dot(&sc.force[c.node[k]]))
             .sum();
-        p.radius * tangential
+        m.friction_radius(j) * tangential
     };
     -load - belt
 }

@@ -75,7 +75,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             continue;
         }
         let fp = FrictionPulley {
-            radius: p.radius,
+            radius: m.friction_radius(j),
             inertia: p.inertia,
             omega: s.pulley_omega[j],
             center_velocity: s.pulley_center_velocity(m, j),
@@ -157,7 +157,7 @@ fn creep_on_pulley(
     }
     let p = &m.pulleys[j];
     let pulley = super::creep::CreepPulley {
-        radius: p.radius,
+        radius: m.friction_radius(j),
         inertia: if held { f64::INFINITY } else { p.inertia },
         omega: s.pulley_omega[j],
         center_velocity: s.pulley_center_velocity(m, j),

@@ -355,6 +355,29 @@ impl Model {
         self.formulation == Formulation::RigidBody
     }
 
+    /// True if the rigid bodies rest on pulley `j` with their two ends
+    /// (`belt::rigid::contact`): rigid bodies on a pulley with the linear penalty. Under
+    /// Kubas's nonlinear law they touch at their mass centres, as in the paper.
+    #[inline]
+    pub fn rests_on_ends(&self, j: usize) -> bool {
+        self.is_rigid() && self.pulleys[j].nonlinear.is_none()
+    }
+
+    /// The radius at which pulley `j`'s friction acts on the belt points, m: the surface
+    /// speed ω·r a point touching it is measured against and the lever of its friction.
+    /// The pulley's radius for nodes (and for rigid bodies touching at their mass
+    /// centres); for rigid bodies resting on their ends, their mass centres' distance
+    /// ρ = (l/2)·cot(l/2R) (`belt::rigid::contact`).
+    #[inline]
+    pub fn friction_radius(&self, j: usize) -> f64 {
+        let r = self.pulleys[j].radius;
+        if self.rests_on_ends(j) {
+            crate::belt::rigid::contact::contact_radius(self.element_length(), r)
+        } else {
+            r
+        }
+    }
+
     /// True if the compiled model runs `stage`.
     pub fn has_stage(&self, stage: Stage) -> bool {
         self.stages.contains(&stage)

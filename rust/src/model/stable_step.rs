@@ -32,10 +32,18 @@ impl Model {
     /// (an error above the limit) or `solver.time_step_fraction` of the limit.
     pub fn stable_step(&self, contact_scale: f64) -> BeltResult<StableStep> {
         let n = self.nodes;
+        // A rigid body turning on its two end contacts (k/2 each at the lever l/2,
+        // `belt::rigid::contact`): ω² = 2·(k/2)·(l/2)²/(m·l²/12) = 3k/m, i.e. 3k as a
+        // stiffness on its translation (and 3c for the damping).
         let k_contact = self
             .pulleys
             .iter()
-            .map(|p| p.contact_bound(contact_scale))
+            .enumerate()
+            .map(|(j, p)| {
+                let turning = if self.rests_on_ends(j) { 3.0 } else { 1.0 };
+                let (k, c) = p.contact_bound(contact_scale);
+                (turning * k, turning * c)
+            })
             .chain(
                 self.idlers
                     .iter()

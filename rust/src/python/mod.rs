@@ -461,6 +461,9 @@ impl PySimulation {
         d.set_item("takeup_speed", PyArray1::from_slice(py, &s.takeup_speed))?;
         d.set_item("idler_speed", PyArray1::from_slice(py, &s.idler_omega))?;
         d.set_item("drive_work", s.drive_work)?;
+        // The rigid-body belt's body angles (rad) and spins (rad/s); empty for the node belt.
+        d.set_item("body_angle", PyArray1::from_slice(py, &s.body_angle))?;
+        d.set_item("body_spin", PyArray1::from_slice(py, &s.body_spin))?;
         let windows: Vec<f64> = s
             .pulley_window
             .iter()

@@ -5,10 +5,12 @@
 //!
 //! - [`sdes`]: the SDE forces and torques between neighbouring bodies.
 //! - [`stage`]: the stage the pipeline calls (`Stage::RigidChain`) and the chain's energy.
+//! - [`contact`]: a body on a pulley, touching it with its two ends (a chord on a circle).
 //!
 //! The same machinery is Guo & Wang's (2020) rigid finite element belt: c_x = EA/Δl,
 //! c_φ = EI/Δl (`crate::model`'s `belt_rigid` part, `docs/kubas.md`).
 
+pub mod contact;
 pub mod sdes;
 pub mod stage;
 
