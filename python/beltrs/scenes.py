@@ -378,15 +378,12 @@ def guo_wang_conveyor(
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Guo & Wang's own rigid finite elements: bodies of the same length, mass
-            and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt starts
-            from the relaxed placement only (``start=None``).
+            and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt's design
+            start places its joint points so that every joint carries its design tension
+            (docs/design-start.md); it has no sag placement.
     """
     p = GUO_WANG
     check_formulation(formulation)
-    if formulation == "rigid_body" and start is not None:
-        raise SceneError(f"start = {start!r}: the design-state start is not available with formulation = "
-                         "'rigid_body' (a rigid body's joint stretch on a drum is not its chord's); use "
-                         "start=None and Simulation.stabilise")
     if start_curve is None:
         start_curve = StartCurve(shape="harrison", speed=p["speed"], ramp=10.0)
     if start_curve.speed > 0:  # the carry strand moves towards the head: clockwise drive
