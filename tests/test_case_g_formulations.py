@@ -118,27 +118,25 @@ def test_start_peak_agrees_between_formulations(runs):
 def test_bad_formulation_input_is_refused_by_name():
     with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
         guo_wang_conveyor(length=LENGTH, formulation="rigid")
-    with pytest.raises(beltrs.SceneError, match="start = 'rest'.*rigid_body.*start=None"):
-        guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
-    # The engine refuses a design start under the rigid-body belt, naming [initial] (with
-    # nodal contact: the node belt's wrap contact, the builder's, is refused by name first).
-    scene = guo_wang_conveyor(length=LENGTH, start="rest")
-    rigid = replace(scene, belt=replace(scene.belt, formulation="rigid_body"))
+    # The rigid-body belt has its own design start (docs/design-start.md), but no sag
+    # placement: initial.sag is refused by name; the builder does not ask for it.
+    scene = guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
+    assert scene.initial is not None and not scene.initial.sag
+    assert scene.belt.pulley_contact == "nodes"  # the engine refuses wrap contact with rigid bodies
+    with pytest.raises(beltrs.SceneError, match=r"initial\.sag.*rigid_body"):
+        beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag=True)))
+    # The node belt's scene switched to rigid bodies by hand: its wrap contact is refused by name.
+    node = guo_wang_conveyor(length=LENGTH, start="rest")
     with pytest.raises(beltrs.SceneError, match="pulley_contact"):
-        beltrs.Simulation(rigid)
-    rigid = replace(rigid, belt=replace(rigid.belt, pulley_contact="nodes"))
-    with pytest.raises(beltrs.SceneError, match="initial"):
-        beltrs.Simulation(rigid)
-    # The builder: a known formulation, and no running start with rigid bodies.
+        beltrs.Simulation(replace(node, belt=replace(node.belt, formulation="rigid_body")))
+    # The builder: a known formulation; rigid bodies start from the design state too.
     from beltrs.conveyor import Conveyor
 
     with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
         Conveyor(formulation="rigid").validate()
-    with pytest.raises(beltrs.SceneError, match="start = 'running'"):
-        Conveyor(formulation="rigid_body", start="running").validate()
     scene = Conveyor(formulation="rigid_body", capacity=400.0).scene()
-    assert scene.belt.formulation == "rigid_body" and scene.initial is None and scene.recording.stabilise
-    assert scene.belt.pulley_contact == "nodes"  # the rigid bodies touch the drums at their centres
+    assert scene.belt.formulation == "rigid_body" and scene.initial is not None and not scene.initial.sag
+    assert not scene.recording.stabilise and scene.belt.pulley_contact == "nodes"
     assert scene.loads and scene.loads[0].mass_per_length > 0
     # From TOML: the builder's field, and a scene file's loads on a rigid-body belt.
     assert beltrs.conveyor.loads('[conveyor]\nformulation = "rigid_body"\n').formulation == "rigid_body"

@@ -408,10 +408,8 @@ class Conveyor:
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Kubas's and Guo & Wang's rigid bodies, the same element length, mass, EA, EI).
-            The rigid-body belt has no design-state placement yet: with ``start="rest"``
-            its scene starts from the belt placed on the pulleys' path and relaxed to the
-            standstill state (``recording.stabilise``, ``Simulation.stabilise``);
-            ``start="running"`` is refused.
+            The rigid-body belt starts from its own design placement (every joint at its
+            design tension, bodies on a drum resting on their ends; docs/design-start.md).
     """
 
     profile: Sequence[Sequence[float]] = ((0.0, 0.0), (100.0, 0.0))
@@ -578,10 +576,6 @@ class Conveyor:
         from .scenes import check_formulation
 
         check_formulation(self.formulation)
-        if self.formulation == "rigid_body" and self.start != "rest":
-            raise SceneError(f"start = {self.start!r}: a running start needs the design-state placement, not "
-                             "available with formulation = 'rigid_body' (a rigid body's joint stretch on a drum "
-                             "is not its chord's); use start='rest' (relaxed to standstill) or the node formulation")
         if le > self.carry.pitch / 2:
             raise SceneError(f"element_length = {le!r}: must be at most half the carry pitch "
                              f"({self.carry.pitch / 2:g} m) for the belt to rest on each idler "
@@ -783,7 +777,6 @@ class Conveyor:
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le),
                     formulation=self.formulation, pulley_contact=conveyor_contact(self.formulation))
-        rigid = self.formulation == "rigid_body"
         longest = max((self._curve(d).end for d in self.drives), default=0.0)
         if duration is None:
             duration = 5.0 if running else longest + 5.0
@@ -794,8 +787,8 @@ class Conveyor:
         return Scene(belt=belt, pulleys=plist, idlers=idlers, loads=loads, gravity=self.gravity,
                      solver=Solver(time_step_fraction=time_step_fraction),
                      recording=Recording(duration=duration, interval=0.05, channels=("tension", "node_position"),
-                                         stabilise=rigid),
-                     initial=None if rigid else self.initial(method))
+                                         stabilise=False),
+                     initial=self.initial(method))
 
     def design_path(self) -> list[tuple[float, float, float]]:
         """The belt's path as corners (x, y, radius), m, in the engine's node order
@@ -859,7 +852,9 @@ class Conveyor:
             design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
         ]
         speed = -self.speed if self.start == "running" else 0.0
-        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True)
+        # The node belt's spans go in their sag; the rigid-body placement has none (refused).
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners,
+                                    sag=self.formulation != "rigid_body")
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""

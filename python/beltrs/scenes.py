@@ -53,8 +53,9 @@ def conveyor_contact(formulation: str) -> str:
     """The conveyor builders' belt–pulley contact (:attr:`beltrs.Belt.pulley_contact`):
     ``"wrap"`` for the node belt (the belt measured along its path round the drums: no chord
     polygon, so no chordal tension ripple on a held drum and no node-phase tension step at
-    rest; docs/wrap-contact.md), ``"nodes"`` for the rigid-body belt, whose bodies touch the
-    pulleys at their mass centres (the engine refuses wrap contact with it)."""
+    rest; docs/wrap-contact.md), ``"nodes"`` for the rigid-body belt, whose bodies rest on
+    the pulleys with their own contact (rust/src/belt/rigid/contact.rs; the engine refuses
+    wrap contact with it)."""
     return "nodes" if formulation == "rigid_body" else "wrap"
 
 
@@ -385,20 +386,17 @@ def guo_wang_conveyor(
             ``"running"`` (DIN 22101's steady-running tensions, belt and pulleys at
             2 m/s, the start curve already ended) or None (default: the belt placed
             unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
-            run). A design start places the spans on rolls in their static sag
-            (``initial.sag``).
+            run). A design start places the node belt's spans on rolls in their static
+            sag (``initial.sag``).
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Guo & Wang's own rigid finite elements: bodies of the same length, mass
-            and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt starts
-            from the relaxed placement only (``start=None``).
+            and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt's design
+            start places its joint points so that every joint carries its design tension
+            (docs/design-start.md); it has no sag placement.
     """
     p = GUO_WANG
     check_formulation(formulation)
-    if formulation == "rigid_body" and start is not None:
-        raise SceneError(f"start = {start!r}: the design-state start is not available with formulation = "
-                         "'rigid_body' (a rigid body's joint stretch on a drum is not its chord's); use "
-                         "start=None and Simulation.stabilise")
     if start_curve is None:
         start_curve = StartCurve(shape="harrison", speed=p["speed"], ramp=10.0)
     if start_curve.speed > 0:  # the carry strand moves towards the head: clockwise drive
@@ -439,7 +437,7 @@ def guo_wang_conveyor(
     if start is not None:
         if start not in ("rest", "running"):
             raise SceneError(f"start = {start!r}: must be None, 'rest' or 'running' (the design state to start from)")
-        initial = _guo_wang_initial(length, material, f, takeup_tension, start)
+        initial = _guo_wang_initial(length, material, f, takeup_tension, start, sag=formulation != "rigid_body")
         if start == "running":  # already at speed: the curve has ended
             head = pulleys[1]
             drive = replace(head.drive, start_curve=replace(
@@ -482,9 +480,11 @@ def guo_wang_statics(length: float = GUO_WANG["length"], *, material: float = GU
     return statics.tensions(loop, p["belt_mass"], method)
 
 
-def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: float, start: str) -> Any:
+def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: float, start: str,
+                      sag: bool) -> Any:
     """Case G's design state on its pulleys' path (node 0 at the tail's top, node order
-    against travel: tail wrap, return strand, head wrap, carry strand)."""
+    against travel: tail wrap, return strand, head wrap, carry strand); ``sag``: the spans
+    placed in their static sag (the node belt; the rigid-body placement has none)."""
     from . import design_start, statics
 
     r = GUO_WANG["drum_radius"]
@@ -505,7 +505,7 @@ def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: 
         design_start.Run(0.0, span, path_start=total - r, path_end=total - length + r),
     ]
     return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0,
-                                sag=True)
+                                sag=sag)
 
 
 @dataclass(frozen=True)

@@ -127,7 +127,10 @@ impl State {
             node_mass,
             load_edges,
             body_angle: model.initial_angles.clone(),
-            body_spin: vec![0.0; model.initial_angles.len()],
+            body_spin: match motion {
+                Some(m) if m.body_spin.len() == model.initial_angles.len() => m.body_spin.clone(),
+                _ => vec![0.0; model.initial_angles.len()],
+            },
             adaptive_step: 0.0,
             accepted_steps: 0,
             rejected_steps: 0,

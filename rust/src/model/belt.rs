@@ -21,6 +21,9 @@ pub(super) struct NodeBelt {
     pub ends: Option<super::open::OpenEnds>,
     /// Initial speeds of a design start (`None`: at rest).
     pub motion: Option<super::design::InitialMotion>,
+    /// The rigid-body belt's body angles of a design start, rad (`None`: along the chord
+    /// through the neighbours, `super::belt_rigid`).
+    pub angles: Option<Vec<f64>>,
 }
 
 /// Largest error of the tension ratio over a pulley's wrap that the default element
@@ -71,13 +74,9 @@ fn friction_element(scene: &Scene, path: &BeltPath) -> f64 {
 pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<NodeBelt> {
     if let Some(initial) = &scene.initial {
         let d = super::design::place(scene, initial, path)?;
-        return Ok(arrays(
-            scene,
-            d.nodes,
-            d.rest_length,
-            d.positions,
-            Some(d.motion),
-        ));
+        let mut b = arrays(scene, d.nodes, d.rest_length, d.positions, Some(d.motion));
+        b.angles = d.angles;
+        return Ok(b);
     }
     let (n, l0) = discretise(scene, path)?;
     if scene.belt.is_open() {
@@ -226,6 +225,7 @@ pub(super) fn arrays(
         bending_stiffness,
         ends: None,
         motion,
+        angles: None,
     }
 }
 

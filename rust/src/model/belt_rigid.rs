@@ -55,18 +55,20 @@ pub(super) fn compile(scene: &Scene, path: &BeltPath) -> BeltResult<(NodeBelt, R
         .collect();
     let x = &belt.initial_positions;
     let open = belt.ends.is_some();
-    let angles = (0..n)
-        .map(|i| {
-            // Along the chord through the neighbours; an open belt's end point (and the
-            // bodies next to it) along the chord from the end point.
-            let d = if open {
-                x[(i + 1).min(n - 1)] - x[i.max(1) - 1]
-            } else {
-                x[(i + 1) % n] - x[(i + n - 1) % n]
-            };
-            d.y.atan2(d.x)
-        })
-        .collect();
+    let angles = belt.angles.clone().unwrap_or_else(|| {
+        (0..n)
+            .map(|i| {
+                // Along the chord through the neighbours; an open belt's end point (and the
+                // bodies next to it) along the chord from the end point.
+                let d = if open {
+                    x[(i + 1).min(n - 1)] - x[i.max(1) - 1]
+                } else {
+                    x[(i + 1) % n] - x[(i + n - 1) % n]
+                };
+                d.y.atan2(d.x)
+            })
+            .collect()
+    });
     Ok((
         belt,
         RigidParts {

@@ -44,6 +44,9 @@ pub struct InitialMotion {
     pub pulley_omega: Vec<f64>,
     /// Idler angular speeds, rad/s.
     pub idler_omega: Vec<f64>,
+    /// Rigid-body belt: each body's spin, rad/s (about v/(ρ − δ) on a wrap, 0 on a strand;
+    /// `super::design_rigid`). Empty for the node belt.
+    pub body_spin: Vec<f64>,
 }
 
 /// The placed belt of a design start.
@@ -52,8 +55,10 @@ pub(super) struct DesignPlacement {
     pub nodes: usize,
     /// Element rest length l⁰, m.
     pub rest_length: f64,
-    /// Node positions, m.
+    /// Node positions (the rigid-body belt: the bodies' mass centres), m.
     pub positions: Vec<V2>,
+    /// Rigid-body belt: the bodies' angles, rad (`super::design_rigid`); `None` for nodes.
+    pub angles: Option<Vec<f64>>,
     /// Initial speeds.
     pub motion: InitialMotion,
 }
@@ -355,25 +360,53 @@ pub(super) fn place(
     // With wrap contact an element on a drum is measured along its path round it
     // (`contact::wrap`): nodes at equal arc length there, not sunk by a penetration.
     let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap;
-    let sink_wraps: &[ContactWrap] = if wrap_contact { &[] } else { &wraps };
+    // The rigid-body belt walks its joint points instead (`super::design_rigid`): on a
+    // wrap they lie on the vertex circle, which already holds the bodies' depth.
+    let rigid = belt.formulation == crate::scene::Formulation::RigidBody;
+    let sink_wraps: &[ContactWrap] = if wrap_contact || rigid { &[] } else { &wraps };
     // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
     // the belt bends over each roll at the roll, and an element over one is as long as its
     // path there.
     let roll_wrap = belt.idler_contact == crate::scene::IdlerContactKind::Wrap;
+    // The vertex circles (centre, r_v) of the wraps for bodies of length l⁰, each at its
+    // wrap's middle tension.
+    let circles = |l0: f64| -> Vec<(V2, f64)> {
+        if !rigid {
+            return Vec::new();
+        }
+        wraps
+            .iter()
+            .map(|w| {
+                let t = init.tension_at(0.5 * (w.from + w.to), length);
+                let (_, rv) = super::design_rigid::wrap_pitch(l0, t, w.radius, w.stiffness, ea);
+                (w.center, rv)
+            })
+            .collect()
+    };
+    // A rigid joint's design gap l⁰·T/EA becomes e = gap/cos(α/2) along each of its two
+    // bodies' chords (half each): the chord's strain is scaled by the mean of 1/cos(α/2)
+    // at its two ends (from the previous pass).
+    let mut factor = vec![1.0; n];
     // The sag of the spans on rolls (`super::sag`), updated between passes.
     let sag = std::cell::RefCell::new(super::sag::SagShape::default());
     let point = |s: f64| sag.borrow().point(path, s);
     // Walk n elements from node 0: element e gets the chord l⁰·(1 + T/EA) at its middle
     // plus `extra[e]` (what sinking its nodes into a drum will take off it).
-    let walk = |l0: f64, extra: &[f64], mut out: Option<&mut Vec<f64>>| -> BeltResult<f64> {
+    let walk = |l0: f64,
+                extra: &[f64],
+                factor: &[f64],
+                mut out: Option<&mut Vec<f64>>|
+     -> BeltResult<f64> {
+        let on = circles(l0);
+        let point = |s: f64| super::design_rigid::onto_vertex_circles(point(s), &on);
         let mut s = 0.0;
-        for e in extra {
+        for (e, f) in extra.iter().zip(factor) {
             if let Some(o) = out.as_deref_mut() {
                 o.push(s);
             }
             // the tension at the element's middle: half its stretched length on
-            let guess = l0 * (1.0 + strain(s + 0.5 * l0));
-            let chord = l0 * (1.0 + strain(s + 0.5 * guess)) + e;
+            let guess = l0 * (1.0 + strain(s + 0.5 * l0) * f);
+            let chord = l0 * (1.0 + strain(s + 0.5 * guess) * f) + e;
             let kink = if roll_wrap {
                 sag.borrow().kink_in(s, s + 1.01 * chord)
             } else {
@@ -393,9 +426,9 @@ pub(super) fn place(
         Ok(s - length)
     };
     // l⁰ that closes the loop: secant (the walk is nearly linear in it, slope ≈ n).
-    let close = |extra: &[f64]| -> BeltResult<f64> {
+    let close = |extra: &[f64], factor: &[f64]| -> BeltResult<f64> {
         let (mut a, mut b) = (rest / n as f64, rest / n as f64 * (1.0 - 1e-4));
-        let (mut fa, mut fb) = (walk(a, extra, None)?, walk(b, extra, None)?);
+        let (mut fa, mut fb) = (walk(a, extra, factor, None)?, walk(b, extra, factor, None)?);
         let tolerance = 1e-12 * length;
         for _ in 0..40 {
             if fb.abs() <= tolerance || fb == fa {
@@ -404,7 +437,7 @@ pub(super) fn place(
             let c = b - fb * (b - a) / (fb - fa);
             (a, fa) = (b, fb);
             b = c;
-            fb = walk(b, extra, None)?;
+            fb = walk(b, extra, factor, None)?;
             if (b - a).abs() <= 1e-14 * b {
                 break; // at the walk's rounding noise
             }
@@ -442,16 +475,20 @@ pub(super) fn place(
     // fixed point too: its shape depends on where the nodes fall between the rolls, and
     // its extra length moves them along; it is redone until no node moves by 1 µm.
     let sags = init.sag && scene.gravity > 0.0 && !scene.idlers.is_empty();
-    let passes = if sags { 8 } else { 3 };
+    let passes = if sags || rigid { 8 } else { 3 };
     let mut extra = vec![0.0; n];
-    let mut l0 = close(&extra)?;
+    let mut l0 = close(&extra, &factor)?;
     let mut at = Vec::with_capacity(n);
     let mut positions = Vec::new();
     let mut previous: Vec<f64> = Vec::new();
     for pass in 0..passes {
         at.clear();
-        walk(l0, &extra, Some(&mut at))?;
-        let nominal: Vec<V2> = at.iter().map(|&s| point(s)).collect();
+        walk(l0, &extra, &factor, Some(&mut at))?;
+        let on = circles(l0);
+        let nominal: Vec<V2> = at
+            .iter()
+            .map(|&s| super::design_rigid::onto_vertex_circles(point(s), &on))
+            .collect();
         positions = if sink_wraps.is_empty() {
             nominal
         } else {
@@ -459,10 +496,19 @@ pub(super) fn place(
         };
         let settled =
             previous.len() == n && at.iter().zip(&previous).all(|(a, b)| (a - b).abs() <= 1e-6);
-        if (sink_wraps.is_empty() && !sags) || pass == passes - 1 || (pass >= 2 && settled) {
+        if (sink_wraps.is_empty() && !sags && !rigid)
+            || pass == passes - 1
+            || (pass >= 2 && settled)
+        {
             break;
         }
         previous.clone_from(&at);
+        if rigid {
+            let cosines = super::design_rigid::half_turn_cosines(&positions);
+            for e in 0..n {
+                factor[e] = 0.5 * (1.0 / cosines[e] + 1.0 / cosines[(e + 1) % n]);
+            }
+        }
         if !sink_wraps.is_empty() {
             for e in 0..n {
                 let chord = (positions[(e + 1) % n] - positions[e]).norm();
@@ -483,7 +529,7 @@ pub(super) fn place(
             );
             *sag.borrow_mut() = shape;
         }
-        l0 = close(&extra)?;
+        l0 = close(&extra, &factor)?;
     }
     if l0 > min_radius {
         return Err(BeltError::invalid(
@@ -493,6 +539,9 @@ pub(super) fn place(
         ));
     }
     let speed = init.speed;
+    if rigid {
+        return Ok(rigid_placement(scene, path, n, l0, &positions, speed));
+    }
     // along the placed belt: the tangent of the placement curve (central difference)
     let h = 1e-4 * l0;
     let velocity = at
@@ -535,12 +584,83 @@ pub(super) fn place(
         nodes: n,
         rest_length: l0,
         positions,
+        angles: None,
         motion: InitialMotion {
             velocity,
             pulley_omega,
             idler_omega,
+            body_spin: Vec::new(),
         },
     })
+}
+
+/// The rigid-body belt of `n` bodies of length `l0` (m) on the joint points `vertices`
+/// (`super::design_rigid`), moving at `speed` (m/s): each body along its chord at `speed`,
+/// turning at the rate its chord turns as the chain moves on by one chord
+/// (speed·(angle_{k+1} − angle_{k−1})/(2·chord): about v/(ρ − δ) on a wrap, 0 on a strand);
+/// pulleys the path runs round at the bodies' spin there, idlers rolling with the strand.
+fn rigid_placement(
+    scene: &Scene,
+    path: &BeltPath,
+    n: usize,
+    l0: f64,
+    vertices: &[V2],
+    speed: f64,
+) -> DesignPlacement {
+    let (centres, angles) = super::design_rigid::bodies(vertices);
+    let axis = |k: usize| V2::new(angles[k].cos(), angles[k].sin());
+    let velocity = (0..n).map(|k| axis(k) * speed).collect();
+    let body_spin: Vec<f64> = (0..n)
+        .map(|k| {
+            let (a, b) = (angles[(k + n - 1) % n], angles[(k + 1) % n]);
+            let chord = (vertices[(k + 1) % n] - vertices[k]).norm();
+            speed * crate::belt::rigid::sdes::wrap_angle(b - a) / (2.0 * chord)
+        })
+        .collect();
+    // A pulley turns with the bodies on it (their spin there); an idler with the strand.
+    let turning = |center: [f64; 2], radius: f64| -> Option<f64> {
+        let c = V2::new(center[0], center[1]);
+        let (_, dist) = crate::loads::project_on_path(path, c);
+        if speed == 0.0 || dist <= 0.0 || (dist - radius).abs() > 0.05 * radius {
+            return None;
+        }
+        let k = (0..n)
+            .min_by(|&i, &j| ((centres[i] - c).norm()).total_cmp(&(centres[j] - c).norm()))?;
+        Some(body_spin[k])
+    };
+    let pulley_omega = scene
+        .pulleys
+        .iter()
+        .map(|p| turning(p.center, p.radius).unwrap_or(0.0))
+        .collect();
+    let idler_omega = scene
+        .idlers
+        .iter()
+        .map(|d| {
+            if d.friction.is_none() {
+                return 0.0;
+            }
+            let c = V2::new(d.center[0], d.center[1]);
+            let (s, dist) = crate::loads::project_on_path(path, c);
+            if speed == 0.0 || dist <= 0.0 || (dist - d.radius).abs() > 0.05 * d.radius {
+                return 0.0;
+            }
+            let (t, r) = (tangent(path, s), path.point(s) - c);
+            speed * (t.y * r.x - t.x * r.y) / (dist * dist)
+        })
+        .collect();
+    DesignPlacement {
+        nodes: n,
+        rest_length: l0,
+        positions: centres,
+        angles: Some(angles),
+        motion: InitialMotion {
+            velocity,
+            pulley_omega,
+            idler_omega,
+            body_spin,
+        },
+    }
 }
 
 /// The nodes' masses, kg (belt plus the loads' material where it lies on `positions`), for

@@ -10,6 +10,7 @@
 mod belt;
 mod belt_rigid;
 mod design;
+mod design_rigid;
 mod idlers;
 mod open;
 mod path;

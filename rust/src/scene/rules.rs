@@ -136,12 +136,25 @@ impl Scene {
             }
         }
         if self.belt.formulation == Formulation::RigidBody {
-            if self.initial.is_some() {
-                return Err(BeltError::invalid(
-                    "initial",
-                    "a design start",
-                    "the design-state placement stretches node-belt chords to the design tensions; a rigid body's joint stretch on a drum is not its chord's (|d| = chord − l·cos(α/2)), so the rigid_body formulation starts from its placement on the pulleys' path: drop [initial] and relax it (recording.stabilise = true, Simulation.stabilise), or use belt.formulation = \"node_kelvin_voigt\"",
-                ));
+            if let Some(initial) = &self.initial {
+                if initial.sag {
+                    return Err(BeltError::invalid(
+                        "initial.sag",
+                        true,
+                        "the rigid-body design placement walks the bodies' joint points along straight strands (model::design_rigid); it has no sag shape: use initial.sag = false with belt.formulation = \"rigid_body\" (the strands sag in the first fraction of a second), or the node belt",
+                    ));
+                }
+                if let Some(j) = self
+                    .pulleys
+                    .iter()
+                    .position(|p| p.nonlinear_contact.is_some())
+                {
+                    return Err(BeltError::invalid(
+                        format!("pulleys[{j}].nonlinear_contact"),
+                        "Kubas's law",
+                        "the rigid-body design placement rests the bodies on their ends under the linear penalty (belt::rigid::contact); under the nonlinear law they touch at their mass centres: drop [initial] and relax the placement, or use the linear penalty",
+                    ));
+                }
             }
             if self.belt.tension_only {
                 return Err(BeltError::invalid(
