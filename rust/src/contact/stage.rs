@@ -11,6 +11,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     let arm: &[f64] = if effects.damping { &s.arm_force } else { &[] };
     let law: ElementLaw = m.element_law(effects.damping, arm);
+    sc.wrap_excess.clear();
     for (j, p) in m.pulleys.iter().enumerate() {
         // Zero stiffness: the belt passes through this pulley (no contact).
         if p.contact_stiffness == 0.0 {
@@ -42,6 +43,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.force,
                 &mut sc.tension,
                 contacts,
+                &mut sc.wrap_excess,
             )
         } else {
             // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
@@ -119,6 +121,7 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
             stamp,
             &mut sc.force,
             &mut sc.tension,
+            &mut sc.wrap_excess,
         );
     }
 }
