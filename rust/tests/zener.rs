@@ -183,7 +183,7 @@ fn arms_follow_the_wrapped_path_length_not_the_chord() {
         let stiffness = vec![k; elements];
         // 0.3 s: three elements run onto the drum.
         for _ in 0..3000 {
-            let list = if with_excess {
+            let mut list = if with_excess {
                 excess(&s.position)
             } else {
                 Vec::new()
@@ -197,7 +197,7 @@ fn arms_follow_the_wrapped_path_length_not_the_chord() {
                 &mut s,
                 dt,
                 true,
-                (&list, &mut dense),
+                (&mut list, &mut dense),
             );
             s.step += 1;
             for f in &s.arm_force {

@@ -124,4 +124,7 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
             &mut sc.wrap_excess,
         );
     }
+    if m.zener.is_none() {
+        sc.wrap_excess.clear(); // kept for the viscoelastic arms only
+    }
 }

@@ -102,8 +102,8 @@ fn second(e: usize, n: usize) -> usize {
 ///
 /// The length is the one the element's spring sees: its chord, plus, for an element the
 /// last evaluation measured along a pulley's or a roll's path (`excess`: element, path
-/// minus chord, m; `dense` a zeroed scratch of one entry per element, left zeroed), that
-/// excess. An arm following the chord alone would see every element shorten by its wrap
+/// minus chord, m, emptied once used; `dense` a zeroed scratch of one entry per element,
+/// left zeroed), that excess. An arm following the chord alone would see every element shorten by its wrap
 /// excess as it runs onto a roll or a drum and lengthen as it leaves: a tension swing of
 /// the arm stiffness times the excess at the node-passing frequency, a chordal action of
 /// the arms. At the first step (`s.step` 0: the arms started at the chord lengths) the
@@ -115,7 +115,7 @@ pub fn advance_all(
     s: &mut State,
     drift: f64,
     physical: bool,
-    (excess, dense): (&[(usize, f64)], &mut Vec<f64>),
+    (excess, dense): (&mut Vec<(usize, f64)>, &mut Vec<f64>),
 ) {
     let n = s.position.len();
     let (a, b) = step_factors(zener.time, drift);
@@ -127,7 +127,7 @@ pub fn advance_all(
     if dense.len() != elements {
         *dense = vec![0.0; elements];
     }
-    for &(e, x) in excess {
+    for &(e, x) in excess.iter() {
         if e < elements {
             dense[e] = x;
         }
@@ -141,11 +141,12 @@ pub fn advance_all(
         *force = a * *force + b * k * (l - start);
         *length = l;
     }
-    for &(e, _) in excess {
+    for &(e, _) in excess.iter() {
         if e < elements {
             dense[e] = 0.0;
         }
     }
+    excess.clear();
 }
 
 /// The element lengths of the state's positions (the arms' starting lengths).
