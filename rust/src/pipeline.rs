@@ -91,6 +91,12 @@ pub struct Scratch {
     pub wrap_mark: Vec<u64>,
     /// This evaluation's stamp in `wrap_mark` (counts the wrap-contact idler evaluations).
     pub wrap_stamp: u64,
+    /// Elements measured along a wrapped path (a pulley's or a roll's) in the last
+    /// evaluation, with their path length minus their chord, m: the viscoelastic arms
+    /// (`belt::node::zener::advance_all`) follow the length the element's spring sees.
+    pub wrap_excess: Vec<(usize, f64)>,
+    /// Dense per-element copy of `wrap_excess` used while the arms advance (zero between).
+    pub arm_excess: Vec<f64>,
     /// Friction torque on each idler, N·m.
     pub idler_torque: Vec<f64>,
     /// Running-resistance force of each idler on the belt, N, along the contact tangent
@@ -145,6 +151,8 @@ impl Scratch {
             idler_contacts: vec![IdlerContact::default(); q],
             wrap_mark: Vec::new(),
             wrap_stamp: 0,
+            wrap_excess: Vec::new(),
+            arm_excess: Vec::new(),
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],
             control: vec![ControlOutput::default(); p],

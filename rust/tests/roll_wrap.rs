@@ -82,6 +82,7 @@ fn forces(x: &[V2], chain: &Chain) -> (Vec<V2>, beltrs::contact::IdlerContact) {
         1,
         &mut f,
         &mut tension,
+        &mut Vec::new(),
     );
     (f, c)
 }

@@ -303,6 +303,7 @@ pub fn pulley_wrap_contact(
     force: &mut [V2],
     tension: &mut [f64],
     out: &mut PulleyContacts,
+    excess: &mut Vec<(usize, f64)>,
 ) -> V2 {
     out.clear();
     let n = x.len();
@@ -335,6 +336,7 @@ pub fn pulley_wrap_contact(
         );
         tension[i] = t;
         out.wrapped.push((i, g.length));
+        excess.push((i, g.length - (x[j] - x[i]).norm()));
         on_pulley += on;
         let load = t * g.angle;
         let kq = if k + 1 == w { 0 } else { k + 1 };

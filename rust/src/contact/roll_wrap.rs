@@ -49,6 +49,7 @@ pub fn idler_wrap_contact(
     stamp: u64,
     force: &mut [V2],
     tension: &mut [f64],
+    excess: &mut Vec<(usize, f64)>,
 ) -> IdlerContact {
     let n = x.len();
     let (e, near) = super::track_element(element, x, body);
@@ -96,6 +97,7 @@ pub fn idler_wrap_contact(
             force,
         );
         tension[k] = t;
+        excess.push((k, g.length - (x[j] - x[k]).norm()));
         // The roll's contact damping on a node moving towards the roll across its tangent
         // line (never pulling): zero in steady running, where the nodes move along the path.
         let mut on_roll = on_roll;

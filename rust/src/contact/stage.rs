@@ -11,6 +11,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     let arm: &[f64] = if effects.damping { &s.arm_force } else { &[] };
     let law: ElementLaw = m.element_law(effects.damping, arm);
+    sc.wrap_excess.clear();
     for (j, p) in m.pulleys.iter().enumerate() {
         // Zero stiffness: the belt passes through this pulley (no contact).
         if p.contact_stiffness == 0.0 {
@@ -42,6 +43,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.force,
                 &mut sc.tension,
                 contacts,
+                &mut sc.wrap_excess,
             )
         } else if m.rests_on_ends(j) {
             // Rigid bodies rest on the pulley with their two ends (`belt::rigid::contact`).
@@ -139,6 +141,10 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
             stamp,
             &mut sc.force,
             &mut sc.tension,
+            &mut sc.wrap_excess,
         );
+    }
+    if m.zener.is_none() {
+        sc.wrap_excess.clear(); // kept for the viscoelastic arms only
     }
 }

@@ -178,6 +178,7 @@ impl Simulation {
                 &mut self.state,
                 drift,
                 self.inertia.physical,
+                (&mut self.scratch.wrap_excess, &mut self.scratch.arm_excess),
             );
         }
         let s = &mut self.state;

@@ -99,6 +99,15 @@ fn second(e: usize, n: usize) -> usize {
 /// arm forces relax and follow the length change since the last step. In the static
 /// relaxation (`physical` false: fictitious masses, no time) the arms hold no force and
 /// only follow the lengths.
+///
+/// The length is the one the element's spring sees: its chord, plus, for an element the
+/// last evaluation measured along a pulley's or a roll's path (`excess`: element, path
+/// minus chord, m, emptied once used; `dense` a zeroed scratch of one entry per element,
+/// left zeroed), that excess. An arm following the chord alone would see every element shorten by its wrap
+/// excess as it runs onto a roll or a drum and lengthen as it leaves: a tension swing of
+/// the arm stiffness times the excess at the node-passing frequency, a chordal action of
+/// the arms. At the first step (`s.step` 0: the arms started at the chord lengths) the
+/// excess is taken as already there.
 pub fn advance_all(
     zener: &Zener,
     stiffness: &[f64],
@@ -106,6 +115,7 @@ pub fn advance_all(
     s: &mut State,
     drift: f64,
     physical: bool,
+    (excess, dense): (&mut Vec<(usize, f64)>, &mut Vec<f64>),
 ) {
     let n = s.position.len();
     let (a, b) = step_factors(zener.time, drift);
@@ -114,12 +124,29 @@ pub fn advance_all(
     } else {
         (0.0, 0.0)
     };
+    if dense.len() != elements {
+        *dense = vec![0.0; elements];
+    }
+    for &(e, x) in excess.iter() {
+        if e < elements {
+            dense[e] = x;
+        }
+    }
+    let first = s.step == 0;
     let arms = s.arm_force.iter_mut().zip(s.arm_length.iter_mut());
     for (e, ((force, length), &k)) in arms.zip(stiffness).take(elements).enumerate() {
-        let l = (s.position[second(e, n)] - s.position[e]).norm();
-        *force = a * *force + b * k * (l - *length);
+        let chord = (s.position[second(e, n)] - s.position[e]).norm();
+        let l = chord + dense[e];
+        let start = if first { *length + dense[e] } else { *length };
+        *force = a * *force + b * k * (l - start);
         *length = l;
     }
+    for &(e, _) in excess.iter() {
+        if e < elements {
+            dense[e] = 0.0;
+        }
+    }
+    excess.clear();
 }
 
 /// The element lengths of the state's positions (the arms' starting lengths).

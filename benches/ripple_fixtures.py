@@ -1,0 +1,73 @@
+"""The two fixtures of tests/test_ripple.py (issue 12), exactly as the test builds them
+(case G 150 m stabilised, then a 4 s Harrison start; the 300 m builder conveyor from its
+sag-placed design start at rest), with the belt's idler contact and viscoelastic loss
+factor set from the command line. Prints one JSON line: the test's figures
+(``ripple_figures``: raw and low-passed probe-tension peaks, the drive torque's mean and
+ripple above 2 Hz over the last 2 s of 4 s at speed), and the torque's rms above 2 Hz,
+its band energies and strongest lines (``benches/ripple_drive.py``'s ``figures``), the
+step and the wall time. A script, not a test (docs/wrap-contact.md, "Damping the strands'
+modes").
+
+    python benches/ripple_fixtures.py conveyor --idler-contact wrap --loss-factor 0.1
+    python benches/ripple_fixtures.py case_g --idler-contact segment --loss-factor 0.2 --loss-frequency 3
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import beltrs
+from beltrs.scenes import GUO_WANG, guo_wang_conveyor
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from conveyor_300 import conveyor_300, measure, ripple_figures  # noqa: E402
+from ripple_drive import figures  # noqa: E402
+
+RAMP, STEADY, WINDOW = 4.0, 4.0, 2.0  # tests/test_ripple.py
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("which", choices=["case_g", "conveyor"])
+    ap.add_argument("--idler-contact", default="wrap", choices=["segment", "wrap"])
+    ap.add_argument("--loss-factor", type=float, default=0.0)
+    ap.add_argument("--loss-frequency", type=float, default=5.0, help="Hz")
+    ap.add_argument("--save", help="write the measured record (time, tension, torque, ...) to this .npz")
+    a = ap.parse_args(argv)
+
+    def belt(scene: beltrs.Scene) -> beltrs.Scene:
+        return replace(scene, belt=replace(scene.belt, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
+                                           loss_frequency=a.loss_frequency))
+
+    t0 = time.perf_counter()
+    if a.which == "case_g":
+        length = 150.0
+        curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
+        sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length)))
+        sim.stabilise(tolerance=1e-5, max_steps=400_000)
+        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + STEADY)
+    else:
+        sim = beltrs.Simulation(belt(conveyor_300(ramp=RAMP).scene()))
+        data = measure(sim, (290.0, 0.0), "head", RAMP + STEADY)
+    f = ripple_figures(data, WINDOW)
+    if a.save:
+        import numpy as np
+
+        np.savez(a.save, **data)
+    g = figures(data["time"], data["torque"], WINDOW)
+    f.update(which=a.which, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
+             loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
+             rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
+             wall_s=time.perf_counter() - t0)
+    print(json.dumps(f), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
