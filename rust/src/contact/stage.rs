@@ -90,12 +90,7 @@ pub fn idler_contact(cx: &mut StageContext<'_>) {
     }
     let (m, s, sc, effects) = (cx.model, &mut *cx.state, &mut *cx.scratch, cx.effects);
     for (k, d) in m.idlers.iter().enumerate() {
-        let body = IdlerBody {
-            center: d.center,
-            radius: d.radius,
-            stiffness: d.contact_stiffness * cx.contact_scale,
-            damping: effects.damped(d.contact_damping),
-        };
+        let body = idler_body(d, cx.contact_scale, effects);
         sc.idler_contacts[k] = super::idler_contact(
             &mut s.idler_element[k],
             &s.position,
@@ -103,6 +98,22 @@ pub fn idler_contact(cx: &mut StageContext<'_>) {
             &body,
             &mut sc.force,
         );
+    }
+}
+
+/// An idler as the contact kernels see it: its stiffness scaled as this evaluation asks
+/// (`contact_scale`), its damping as the effects apply it.
+#[inline]
+fn idler_body(
+    d: &crate::model::IdlerModel,
+    contact_scale: f64,
+    effects: crate::pipeline::Effects,
+) -> IdlerBody {
+    IdlerBody {
+        center: d.center,
+        radius: d.radius,
+        stiffness: d.contact_stiffness * contact_scale,
+        damping: effects.damped(d.contact_damping),
     }
 }
 
@@ -125,12 +136,7 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
         }
     }
     for (k, d) in m.idlers.iter().enumerate() {
-        let body = IdlerBody {
-            center: d.center,
-            radius: d.radius,
-            stiffness: d.contact_stiffness * cx.contact_scale,
-            damping: effects.damped(d.contact_damping),
-        };
+        let body = idler_body(d, cx.contact_scale, effects);
         sc.idler_contacts[k] = super::roll_wrap::idler_wrap_contact(
             &mut s.idler_element[k],
             &s.position,
