@@ -29,18 +29,10 @@ use nalgebra::Vector2;
 
 type V2 = Vector2<f64>;
 
-/// ρ = (l/2)·cot(l/2R): the distance from a pulley's centre at which a rigid body of
-/// length `length` resting with its two ends on the drum (linear penalty) has its mass
-/// centre, m. The same formula as `crate::belt::rigid::contact::contact_radius`, which
-/// the contact uses (`rust/tests` and [`tests`] check they agree).
-pub(crate) fn rest_radius(length: f64, radius: f64) -> f64 {
-    let half = 0.5 * length / radius;
-    if half > 0.0 {
-        0.5 * length / half.tan()
-    } else {
-        radius
-    }
-}
+/// ρ = (l/2)·cot(l/2R), m: where a rigid body resting with its two ends on a drum (linear
+/// penalty) has its mass centre; the contact's own radius, so that the placement rests
+/// each body where the contact holds it.
+use crate::belt::rigid::contact::contact_radius as rest_radius;
 
 /// The turn per body φ (rad) and the vertex radius r_v (m) of a uniform wrap of bodies of
 /// length `l` (m) at tension `t` (N) on a drum of radius `radius` (m) and contact stiffness
@@ -112,16 +104,6 @@ pub(crate) fn half_turn_cosines(vertices: &[V2]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rest_radius_is_the_contacts() {
-        for (l, r) in [(0.3, 1.0), (0.05, 0.4), (0.2, 0.2)] {
-            assert_eq!(
-                rest_radius(l, r),
-                crate::belt::rigid::contact::contact_radius(l, r)
-            );
-        }
-    }
 
     #[test]
     fn a_uniform_wrap_has_its_design_gap_and_depth() {
