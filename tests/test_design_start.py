@@ -380,9 +380,11 @@ def test_rigid_body_design_start_of_case_g_holds_din_tensions_at_rest():
     placement's joint error, Rust test ``rigid_design_start_carries_its_tension_and_stays_
     at_rest``: 0.085 %). Over the first second at rest the spans settle into their sag
     between the rolls (the placement runs them straight; no sag placement for rigid
-    bodies), which moves the tensions: measured at 1 s rigid −1.6 % / +0.8 %, the node
-    belt's own design start of the same scene −0.7 % / −7.3 %. Asserted: the rigid start
-    within 3 % of DIN at 1 s and no farther off than the node belt's."""
+    bodies), which moves the tensions: measured at 1 s rigid −1.67 % / +0.65 %. The node
+    belt's design start of the same scene places its spans in their sag (the builder's
+    default, ``initial.sag``) and holds within 0.09 % (before the sag placement, straight:
+    −0.7 % / −7.3 %). Asserted: the rigid start within 3 % of DIN at 1 s, and the node belt,
+    placed in sag, within 0.5 %: what moves the rigid belt is the sag its placement lacks."""
     probes = [(50.0, 0.4), (50.0, -0.4)]
     curve = beltrs.StartCurve("harrison", speed=2.0, ramp=10.0, start=5.0)
     runs = {}
@@ -395,7 +397,7 @@ def test_rigid_body_design_start_of_case_g_holds_din_tensions_at_rest():
     off = np.abs(rigid[-1] / din - 1)
     node_off = np.abs(runs["node_kelvin_voigt"][-1] / din - 1).max()
     assert off.max() < 0.03, off
-    assert off.max() <= node_off, (off, node_off)
+    assert node_off < 0.005, node_off
 
 
 def test_rigid_body_design_start_refuses_sag_naming_the_field():
