@@ -189,17 +189,13 @@ pub fn pulley_contact_law(
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();
-    let r2 = body.radius * body.radius;
     for k in 0..window.len {
         let i = (window.first + k) % n;
-        let rel = x[i] - body.center;
-        let a2 = rel.norm_squared();
-        if a2 >= r2 {
+        let Some((normal, depth)) =
+            inside_circle(x[i], body.center, body.radius, V2::new(1.0, 0.0))
+        else {
             continue;
-        }
-        let a = a2.sqrt();
-        let normal = if a > 0.0 { rel / a } else { V2::new(1.0, 0.0) };
-        let depth = body.radius - a;
+        };
         let approach = -(v[i] - body.center_velocity).dot(&normal);
         let fn_ = law(depth, approach);
         let f = normal * fn_;
@@ -384,6 +380,21 @@ pub fn pulley_wrap_contact(
         }
     }
     on_pulley
+}
+
+/// A point `p` inside the circle (`center`, `radius`): the outward unit normal from the
+/// centre through it (`fallback` if it sits on the centre) and its depth below the
+/// surface, m; None if it is on or outside the circle.
+#[inline]
+pub fn inside_circle(p: V2, center: V2, radius: f64, fallback: V2) -> Option<(V2, f64)> {
+    let rel = p - center;
+    let a2 = rel.norm_squared();
+    if a2 >= radius * radius {
+        return None;
+    }
+    let a = a2.sqrt();
+    let normal = if a > 0.0 { rel / a } else { fallback };
+    Some((normal, radius - a))
 }
 
 /// Distance from `c` to the segment [p, q]: (distance, parameter γ ∈ [0, 1] of the closest

@@ -124,17 +124,13 @@ pub fn idler_wrap_contact(
         out.strain += law.energy(k, g.length) - law.energy(k, chord);
     }
     // Nodes pressed into the roll: the penalty keeps them out.
-    let r2 = body.radius * body.radius;
     for off in 0..4 {
         let i = (first + off) % n;
-        let rel = x[i] - body.center;
-        let a2 = rel.norm_squared();
-        if a2 >= r2 {
+        let Some((normal, depth)) =
+            super::inside_circle(x[i], body.center, body.radius, V2::new(0.0, 1.0))
+        else {
             continue;
-        }
-        let a = a2.sqrt();
-        let normal = if a > 0.0 { rel / a } else { V2::new(0.0, 1.0) };
-        let depth = body.radius - a;
+        };
         let approach = -v[i].dot(&normal);
         let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
         force[i] += normal * fn_;
