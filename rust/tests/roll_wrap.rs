@@ -82,7 +82,7 @@ fn forces(x: &[V2], chain: &Chain) -> (Vec<V2>, beltrs::contact::IdlerContact) {
         1,
         &mut f,
         &mut tension,
-        &mut Vec::new(),
+        None,
     );
     (f, c)
 }

@@ -222,7 +222,7 @@ fn belt_on_its_path_is_in_equilibrium_wherever_its_nodes_are() {
             &mut force,
             &mut tension,
             &mut out,
-            &mut Vec::new(),
+            None,
         );
         // Every interior node in equilibrium, except for the radial cap (wrap::apply_wrap):
         // a strand node within 4T/k of a tangent point is pulled in as a penalty spring

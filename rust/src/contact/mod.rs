@@ -288,7 +288,8 @@ pub fn pulley_body_contact(
 /// nodes inside the circle get the nodal penalty force of [`pulley_contact`], and each node
 /// that carries normal load (its share of its elements' arc loads T·φ, plus its penalty
 /// force) is recorded in `out` with that load and its load-weighted outward normal, for the
-/// friction solve. Returns the resultant force on the pulley.
+/// friction solve; `excess` (the viscoelastic arms' only) gets each wrapped element with
+/// its path length less its chord, m. Returns the resultant force on the pulley.
 #[allow(clippy::too_many_arguments)]
 pub fn pulley_wrap_contact(
     window: &ContactWindow,
@@ -299,7 +300,7 @@ pub fn pulley_wrap_contact(
     force: &mut [V2],
     tension: &mut [f64],
     out: &mut PulleyContacts,
-    excess: &mut Vec<(usize, f64)>,
+    mut excess: Option<&mut Vec<(usize, f64)>>,
 ) -> V2 {
     out.clear();
     let n = x.len();
@@ -332,7 +333,9 @@ pub fn pulley_wrap_contact(
         );
         tension[i] = t;
         out.wrapped.push((i, g.length));
-        excess.push((i, g.length - (x[j] - x[i]).norm()));
+        if let Some(excess) = excess.as_deref_mut() {
+            excess.push((i, g.length - (x[j] - x[i]).norm()));
+        }
         on_pulley += on;
         let load = t * g.angle;
         let kq = if k + 1 == w { 0 } else { k + 1 };

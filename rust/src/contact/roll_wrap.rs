@@ -36,8 +36,9 @@ type V2 = Vector2<f64>;
 /// segment contact, [`super::idler_contact`]); `claimed[e] == stamp` marks an element already
 /// measured along a wrapped path this evaluation (it gets the segment contact here), and the
 /// elements wrapped here are marked. Each wrapped element's tension is written to `tension`.
-/// Returns the contact (its `strain`: the wrapped elements' strain energy at their path
-/// length less that at their chord, J).
+/// `excess` (the viscoelastic arms' only): each wrapped element with its path length less
+/// its chord, m. Returns the contact (its `strain`: the wrapped elements' strain energy at
+/// their path length less that at their chord, J).
 #[allow(clippy::too_many_arguments)]
 pub fn idler_wrap_contact(
     element: &mut usize,
@@ -49,7 +50,7 @@ pub fn idler_wrap_contact(
     stamp: u64,
     force: &mut [V2],
     tension: &mut [f64],
-    excess: &mut Vec<(usize, f64)>,
+    mut excess: Option<&mut Vec<(usize, f64)>>,
 ) -> IdlerContact {
     let n = x.len();
     let (e, near) = super::track_element(element, x, body);
@@ -97,7 +98,9 @@ pub fn idler_wrap_contact(
             force,
         );
         tension[k] = t;
-        excess.push((k, g.length - (x[j] - x[k]).norm()));
+        if let Some(excess) = excess.as_deref_mut() {
+            excess.push((k, g.length - (x[j] - x[k]).norm()));
+        }
         // The roll's contact damping on a node moving towards the roll across its tangent
         // line (never pulling): zero in steady running, where the nodes move along the path.
         let mut on_roll = on_roll;

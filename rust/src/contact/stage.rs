@@ -43,7 +43,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.force,
                 &mut sc.tension,
                 contacts,
-                &mut sc.wrap_excess,
+                m.zener.is_some().then_some(&mut sc.wrap_excess),
             )
         } else if m.rests_on_ends(j) {
             // Rigid bodies rest on the pulley with their two ends (`belt::rigid::contact`).
@@ -147,10 +147,7 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
             stamp,
             &mut sc.force,
             &mut sc.tension,
-            &mut sc.wrap_excess,
+            m.zener.is_some().then_some(&mut sc.wrap_excess),
         );
-    }
-    if m.zener.is_none() {
-        sc.wrap_excess.clear(); // kept for the viscoelastic arms only
     }
 }

@@ -58,6 +58,7 @@ impl Simulation {
             let w = s.rigid_speed(d) + half * sc.rigid_force(m, d) / mass;
             e.kinetic += 0.5 * mass * w * w;
         }
+        let law = m.element_law(false, &[]); // the elements' strain energy
         for (j, p) in m.pulleys.iter().enumerate() {
             if let Some(t) = &p.takeup {
                 e.gravity -= t.pull * s.takeup_travel[j];
@@ -77,16 +78,8 @@ impl Simulation {
             // Elements wrapped on the pulley store their energy at their path length, not
             // their chord's (contact::wrap).
             for &(i, length) in &sc.contacts[j].wrapped {
-                let chord = (s.position[(i + 1) % n] - s.position[i]).norm() - m.rest_length[i];
-                let path = length - m.rest_length[i];
-                let energy = |x: f64| {
-                    if m.tension_only && x < 0.0 {
-                        0.0
-                    } else {
-                        0.5 * m.axial_stiffness[i] * x * x
-                    }
-                };
-                e.strain += energy(path) - energy(chord);
+                let chord = (s.position[(i + 1) % n] - s.position[i]).norm();
+                e.strain += law.energy(i, length) - law.energy(i, chord);
             }
         }
         // Every part pressing on an idler roll, as the force counts them (not only the
