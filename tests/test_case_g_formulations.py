@@ -110,13 +110,13 @@ def test_start_peak_agrees_between_formulations(runs):
 def test_bad_formulation_input_is_refused_by_name():
     with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
         guo_wang_conveyor(length=LENGTH, formulation="rigid")
-    # The rigid-body belt has its own design start (docs/design-start.md), but no sag
-    # placement: initial.sag is refused by name; the builder does not ask for it.
+    # The rigid-body belt has its own design start (docs/design-start.md), its spans placed
+    # in their sag as the node belt's (initial.sag, the builders' default); bad input named.
     scene = guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
-    assert scene.initial is not None and not scene.initial.sag
+    assert scene.initial is not None and scene.initial.sag
     assert scene.belt.pulley_contact == "nodes"  # the engine refuses wrap contact with rigid bodies
-    with pytest.raises(beltrs.SceneError, match=r"initial\.sag.*rigid_body"):
-        beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag=True)))
+    with pytest.raises(beltrs.SceneError, match=r"initial\.sag"):
+        beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag="yes")))
     # The node belt's scene switched to rigid bodies by hand: its wrap contact is refused by name.
     node = guo_wang_conveyor(length=LENGTH, start="rest")
     with pytest.raises(beltrs.SceneError, match="pulley_contact"):
@@ -127,7 +127,7 @@ def test_bad_formulation_input_is_refused_by_name():
     with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
         Conveyor(formulation="rigid").validate()
     scene = Conveyor(formulation="rigid_body", capacity=400.0).scene()
-    assert scene.belt.formulation == "rigid_body" and scene.initial is not None and not scene.initial.sag
+    assert scene.belt.formulation == "rigid_body" and scene.initial is not None and scene.initial.sag
     assert not scene.recording.stabilise and scene.belt.pulley_contact == "nodes"
     assert scene.loads and scene.loads[0].mass_per_length > 0
     # From TOML: the builder's field, and a scene file's loads on a rigid-body belt.

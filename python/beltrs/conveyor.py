@@ -852,9 +852,8 @@ class Conveyor:
             design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
         ]
         speed = -self.speed if self.start == "running" else 0.0
-        # The node belt's spans go in their sag; the rigid-body placement has none (refused).
-        return design_start.initial(profile, pieces, length, speed=speed, path=corners,
-                                    sag=self.formulation != "rigid_body")
+        # The spans go in their sag (node belt and rigid bodies, docs/design-start.md).
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""

@@ -386,14 +386,14 @@ def guo_wang_conveyor(
             ``"running"`` (DIN 22101's steady-running tensions, belt and pulleys at
             2 m/s, the start curve already ended) or None (default: the belt placed
             unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
-            run). A design start places the node belt's spans on rolls in their static
-            sag (``initial.sag``).
+            run). A design start places the spans on rolls in their static sag
+            (``initial.sag``), for either formulation.
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Guo & Wang's own rigid finite elements: bodies of the same length, mass
             and EA, EI; docs/case-g.md, "Both formulations"). The rigid-body belt's design
             start places its joint points so that every joint carries its design tension
-            (docs/design-start.md); it has no sag placement.
+            (docs/design-start.md), the spans in their sag as the node belt's.
     """
     p = GUO_WANG
     check_formulation(formulation)
@@ -437,7 +437,7 @@ def guo_wang_conveyor(
     if start is not None:
         if start not in ("rest", "running"):
             raise SceneError(f"start = {start!r}: must be None, 'rest' or 'running' (the design state to start from)")
-        initial = _guo_wang_initial(length, material, f, takeup_tension, start, sag=formulation != "rigid_body")
+        initial = _guo_wang_initial(length, material, f, takeup_tension, start, sag=True)
         if start == "running":  # already at speed: the curve has ended
             head = pulleys[1]
             drive = replace(head.drive, start_curve=replace(
@@ -484,7 +484,7 @@ def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: 
                       sag: bool) -> Any:
     """Case G's design state on its pulleys' path (node 0 at the tail's top, node order
     against travel: tail wrap, return strand, head wrap, carry strand); ``sag``: the spans
-    placed in their static sag (the node belt; the rigid-body placement has none)."""
+    placed in their static sag."""
     from . import design_start, statics
 
     r = GUO_WANG["drum_radius"]

@@ -518,7 +518,17 @@ pub(super) fn place(
             }
         }
         if sags {
-            let mass = node_masses(scene, path, &positions, l0)?;
+            let mass = if rigid {
+                // the joint points carry half of each body beside them (its weight and
+                // material at its mass centre, the middle of its chord)
+                let (centres, _) = super::design_rigid::bodies(&positions);
+                let body = node_masses(scene, path, &centres, l0)?;
+                (0..n)
+                    .map(|k| 0.5 * (body[(k + n - 1) % n] + body[k]))
+                    .collect()
+            } else {
+                node_masses(scene, path, &positions, l0)?
+            };
             let shape = super::sag::shape(
                 scene,
                 path,
@@ -526,6 +536,7 @@ pub(super) fn place(
                 &mass,
                 |s| init.tension_at(s, length),
                 roll_wrap,
+                rigid,
             );
             *sag.borrow_mut() = shape;
         }

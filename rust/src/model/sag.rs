@@ -90,6 +90,16 @@ struct Roll {
 /// roll is its two straight pieces from its nodes to the roll's top, the roll a support
 /// (its reaction the tension times the slope change there), instead of a penalty spring
 /// on the element's chord.
+///
+/// `centres`: the points are the rigid-body belt's joint points (`super::design_rigid`),
+/// each body the straight chord between two of them, its mass centre at the chord's middle.
+/// The rolls touch the polygon of the mass centres (the rigid belt's idler contact, lever
+/// rule onto the two bodies), and each body, whose joints are its only moments about its
+/// mass centre, hands its load from weight and rolls half to each of its two joints: a roll
+/// on the centres' chord from body e to body e + 1 at γ presses points e, e + 1, e + 2 with
+/// the shares ((1 − γ)/2, 1/2, γ/2) and reads its depth with the same weights (a
+/// pentadiagonal system). The masses are then the points' shares of the bodies (half of
+/// each neighbour). Not with `kinked`.
 pub(super) fn shape(
     scene: &Scene,
     path: &BeltPath,
@@ -97,7 +107,9 @@ pub(super) fn shape(
     mass: &[f64],
     tension: impl Fn(f64) -> f64,
     kinked: bool,
+    centres: bool,
 ) -> SagShape {
+    let kinked = kinked && !centres;
     let n = at.len();
     let g = scene.gravity;
     let mut lines = Vec::new();
@@ -192,12 +204,39 @@ pub(super) fn shape(
         // at φ = 0.024, eight times the penetration that carries the span).
         let mut slope = vec![0.0; rolls.len()];
         let mut y = vec![0.0; m + 2];
-        // The element under the foot of roll k and the foot's share γ along it.
+        // The points the rolls touch the chords between: the nodes (with the line's ends),
+        // or with `centres` the bodies' mass centres, the middles of the points' chords.
+        let cx: Vec<f64> = if centres {
+            xs.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect()
+        } else {
+            xs.clone()
+        };
+        // The contact point c's offset and its shares of the points (index, weight).
+        let stencil = |c: usize, gamma: f64| -> [(usize, f64); 3] {
+            if centres {
+                [(c, 0.5 * (1.0 - gamma)), (c + 1, 0.5), (c + 2, 0.5 * gamma)]
+            } else {
+                [(c, 1.0 - gamma), (c + 1, gamma), (c, 0.0)]
+            }
+        };
+        // The offset of contact point c itself.
+        let point_y = |y: &[f64], c: usize| {
+            if centres {
+                0.5 * (y[c] + y[c + 1])
+            } else {
+                y[c]
+            }
+        };
+        let height = |y: &[f64], c: usize, gamma: f64| -> f64 {
+            stencil(c, gamma).iter().map(|&(i, w)| w * y[i]).sum()
+        };
+        // The element (the centres' chord) under the foot of roll k and the foot's share γ
+        // along it.
         let place = |r: &Roll, phi: f64| {
             let (sin, cos) = (phi.atan().sin(), phi.atan().cos());
             let foot = r.x - r.radius * sin;
-            let e = xs.partition_point(|&x| x <= foot).clamp(1, m + 1) - 1;
-            let gamma = ((foot - xs[e]) / (xs[e + 1] - xs[e])).clamp(0.0, 1.0);
+            let e = cx.partition_point(|&x| x <= foot).clamp(1, cx.len() - 1) - 1;
+            let gamma = ((foot - cx[e]) / (cx[e + 1] - cx[e])).clamp(0.0, 1.0);
             (e, gamma, r.top - r.radius * (1.0 - cos))
         };
         // Kinked: the roll (by index) bending element e, and the kink (abscissa, offset).
@@ -227,6 +266,7 @@ pub(super) fn shape(
             let mut lo = vec![0.0; m + 2];
             let mut di = vec![0.0; m + 2];
             let mut up = vec![0.0; m + 2];
+            let (mut lo2, mut up2) = (vec![0.0; m + 2], vec![0.0; m + 2]);
             let mut rhs = vec![0.0; m + 2];
             for j in 1..=m {
                 rhs[j] = weight[j - 1];
@@ -265,41 +305,30 @@ pub(super) fn shape(
                 if kink[e].is_some_and(|(kk, _, _)| kk == k) {
                     continue; // a support, in the rows above
                 }
-                let (we, wf) = (1.0 - gamma, gamma);
                 let k = r.stiffness;
-                // force k·(top − we·y_e − wf·y_f) to e (share we) and f = e + 1 (share wf)
-                for (row, share) in [(e, we), (e + 1, wf)] {
-                    if row == 0 || row == m + 1 {
+                // force k·(top − Σ w_i·y_i) to each point i of the stencil (share w_i)
+                let shares = stencil(e, gamma);
+                for &(row, share) in &shares {
+                    if row == 0 || row == m + 1 || share == 0.0 {
                         continue;
                     }
                     rhs[row] -= share * k * top;
-                    for (col, w) in [(e, we), (e + 1, wf)] {
+                    for &(col, w) in &shares {
                         if col == 0 || col == m + 1 {
                             continue;
                         }
                         let c = share * k * w;
-                        if col == row {
-                            di[row] -= c;
-                        } else if col + 1 == row {
-                            lo[row] -= c;
-                        } else {
-                            up[row] -= c;
+                        match col as isize - row as isize {
+                            0 => di[row] -= c,
+                            -1 => lo[row] -= c,
+                            1 => up[row] -= c,
+                            -2 => lo2[row] -= c,
+                            _ => up2[row] -= c,
                         }
                     }
                 }
             }
-            // Thomas algorithm (the matrix is diagonally dominant).
-            let mut cp = vec![0.0; m + 2];
-            let mut dp = vec![0.0; m + 2];
-            for j in 1..=m {
-                let denom = di[j] - lo[j] * cp[j - 1];
-                cp[j] = up[j] / denom;
-                dp[j] = (rhs[j] - lo[j] * dp[j - 1]) / denom;
-            }
-            let mut next = vec![0.0; m + 2];
-            for j in (1..=m).rev() {
-                next[j] = dp[j] - cp[j] * next[j + 1];
-            }
+            let next = solve_band(&mut [lo2, lo, di, up, up2], &mut rhs, m);
             let moved = next
                 .iter()
                 .zip(&y)
@@ -321,13 +350,13 @@ pub(super) fn shape(
                         (yk - y[e]) / (xk - xs[e]).max(1e-12)
                             < (y[e + 1] - yk) / (xs[e + 1] - xk).max(1e-12)
                     }
-                    _ => top - ((1.0 - gamma) * y[e] + gamma * y[e + 1]) < 0.0,
+                    _ => top - height(&y, e, gamma) < 0.0,
                 };
                 if *on && pull {
                     *on = false;
                     changed = true;
                 }
-                *phi = (y[e + 1] - y[e]) / (xs[e + 1] - xs[e]);
+                *phi = (point_y(&y, e + 1) - point_y(&y, e)) / (cx[e + 1] - cx[e]);
             }
             let next_kink = kink_of(&active, &slope);
             let kink_moved = next_kink.iter().zip(&kink).any(|(a, b)| match (a, b) {
@@ -367,4 +396,35 @@ pub(super) fn shape(
     }
     kinks.sort_by(f64::total_cmp);
     SagShape { lines, kinks }
+}
+
+/// The solution y[1..=m] (y[0] = y[m + 1] = 0) of the banded system whose row j has
+/// `band[d][j]` on column j + d − 2 (d = 0..5: two diagonals below, the diagonal, two
+/// above), right side `rhs[j]`: Gaussian elimination without pivoting, which the
+/// placement's matrices allow (symmetric and definite: the tensions' second differences and
+/// the rolls' rank-one stencils, all of one sign). Tridiagonal rows (the node belt) are
+/// Thomas's algorithm.
+fn solve_band(band: &mut [Vec<f64>; 5], rhs: &mut [f64], m: usize) -> Vec<f64> {
+    for i in 1..=m {
+        let pivot = band[2][i];
+        for r in (i + 1)..=(i + 2).min(m) {
+            let f = band[i + 2 - r][r] / pivot;
+            if f == 0.0 {
+                continue;
+            }
+            for c in i..=(i + 2).min(m) {
+                band[c + 2 - r][r] -= f * band[c + 2 - i][i];
+            }
+            rhs[r] -= f * rhs[i];
+        }
+    }
+    let mut y = vec![0.0; m + 2];
+    for i in (1..=m).rev() {
+        let mut v = rhs[i];
+        for c in (i + 1)..=(i + 2).min(m) {
+            v -= band[c + 2 - i][i] * y[c];
+        }
+        y[i] = v / band[2][i];
+    }
+    y
 }

@@ -136,14 +136,7 @@ impl Scene {
             }
         }
         if self.belt.formulation == Formulation::RigidBody {
-            if let Some(initial) = &self.initial {
-                if initial.sag {
-                    return Err(BeltError::invalid(
-                        "initial.sag",
-                        true,
-                        "the rigid-body design placement walks the bodies' joint points along straight strands (model::design_rigid); it has no sag shape: use initial.sag = false with belt.formulation = \"rigid_body\" (the strands sag in the first fraction of a second), or the node belt",
-                    ));
-                }
+            if self.initial.is_some() {
                 if let Some(j) = self
                     .pulleys
                     .iter()
