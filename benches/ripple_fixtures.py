@@ -48,6 +48,7 @@ def main(argv=None) -> int:
     ap.add_argument("--loss-factor", type=float, default=0.0)
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="Hz")
     ap.add_argument("--steady", type=float, default=STEADY, help="s at speed after the start")
+    ap.add_argument("--ramp", type=float, default=RAMP, help="s of the Harrison start")
     ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
     ap.add_argument("--speed", type=float, default=None, help="belt speed, m/s (default 2)")
     ap.add_argument("--windows", type=float, default=None, help="also the figure in successive windows of this many s")
@@ -78,21 +79,21 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     if a.which == "case_g":
         length = 150.0
-        curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=RAMP)
+        curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=a.ramp)
         kw = {} if a.element is None else {"element_length": a.element}
         sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, **kw)))
         sim.stabilise(tolerance=1e-5, max_steps=400_000)
-        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + a.steady)
+        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", a.ramp + a.steady)
     else:
         kw = {} if a.element is None else {"element_length": a.element}
         if a.speed is None:
-            c = conveyor_300(ramp=RAMP, **kw)
+            c = conveyor_300(ramp=a.ramp, **kw)
         else:
             c = Conveyor(profile=[(0.0, 0.0), (LENGTH, 0.0)], belt="ST1250", capacity=500.0, speed=a.speed,
                          drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=a.speed,
-                                                                                 ramp=RAMP))], **kw)
+                                                                                 ramp=a.ramp))], **kw)
         sim = beltrs.Simulation(belt(c.scene()))
-        data = measure(sim, (290.0, 0.0), "head", RAMP + a.steady)
+        data = measure(sim, (290.0, 0.0), "head", a.ramp + a.steady)
     f = ripple_figures(data, WINDOW)
     if a.save:
         import numpy as np
@@ -102,7 +103,7 @@ def main(argv=None) -> int:
     f.update(which=a.which, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
              loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
-             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, steady=a.steady,
+             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, ramp=a.ramp, steady=a.steady,
              element=a.element, speed=a.speed, nodes=sim.nodes)
     if a.windows:
         f.update(windows=window_figures(data["time"], data["torque"], a.windows),
