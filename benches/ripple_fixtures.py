@@ -50,7 +50,9 @@ def main(argv=None) -> int:
     ap.add_argument("--steady", type=float, default=STEADY, help="s at speed after the start")
     ap.add_argument("--ramp", type=float, default=RAMP, help="s of the Harrison start")
     ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
-    ap.add_argument("--speed", type=float, default=None, help="belt speed, m/s (default 2)")
+    ap.add_argument("--speed", type=float, default=None,
+                    help="belt speed, m/s (default 2; case G keeps its material per metre, the 300 m conveyor its "
+                         "500 t/h)")
     ap.add_argument("--windows", type=float, default=None, help="also the figure in successive windows of this many s")
     ap.add_argument("--spectrum", type=float, default=8.0, help="s analysed for the lines (with --windows)")
     ap.add_argument("--drum-friction", default="default", choices=["default", "equal", "creep"],
