@@ -28,6 +28,11 @@ contact on the rolls, ``belt.idler_contact``), ``--sag`` (spans placed in their 
 median over the rolls of each one's peak over its mean and of its standard deviation).
 
     python benches/ripple_drive.py base --wrap --sag --roll-wrap
+
+``--windows 2`` prints the test figure in successive 2 s windows (does it decay?) and the
+lines above 2 Hz over the last ``--window`` s with their share of the energy there:
+
+    python benches/ripple_drive.py base --wrap --sag --roll-wrap --duration 16 --window 8 --windows 2
 """
 
 from __future__ import annotations
@@ -64,6 +69,56 @@ def figures(t: np.ndarray, x: np.ndarray, window: float) -> dict:
         "bands": {f"{a:g}-{b:g}": round(float(spec[(f >= a) & (f < b)].sum() / total), 3) for a, b in BANDS},
         "lines_hz": [round(float(f[k]), 1) for k in np.argsort(spec)[-5:][::-1]],
     }
+
+
+def window_figures(t: np.ndarray, x: np.ndarray, width: float, cutoff: float = 2.0) -> list:
+    """The test's ripple figure (max |x - x_low| over |mean|, ``x_low`` the whole record
+    below ``cutoff`` Hz, as ``tests/conveyor_300.py``'s ``ripple_figures`` takes it) in
+    successive windows of ``width`` s, counted back from the record's end: a list of
+    (window end, s; mean; ripple). A ripple that decays window by window is ringing (of
+    the start or the initial state); one that holds is driven."""
+    dt = float(np.median(np.diff(t)))
+    dev = np.abs(x - low_pass(x, dt, cutoff))
+    out = []
+    end = t[-1]
+    while end - width >= t[0] - 1e-9:
+        w = (t > end - width + 1e-9) & (t <= end + 1e-9)
+        mean = float(x[w].mean())
+        out.append((round(float(end), 3), round(mean, 1), round(float(dev[w].max() / abs(mean)), 3)))
+        end -= width
+    return out[::-1]
+
+
+def lines(t: np.ndarray, x: np.ndarray, window: float, above: float = 2.0, share: float = 0.03,
+          half_width: int = 3, skip_end: float = 0.5) -> list:
+    """The spectral lines of the part of ``x`` above ``above`` Hz (``x`` minus its low-pass,
+    the part the test's ripple figure sees) over ``window`` s ending ``skip_end`` s before
+    the record's end (away from the low-pass's end effect), Hann window: each local maximum
+    of the power spectrum with the energy of the bins within ``half_width`` of it, as a
+    share of all the energy there; those carrying at least ``share``, strongest first, as
+    (frequency Hz, share, amplitude). The amplitude is that of the sinusoid with the line's
+    energy (x's unit)."""
+    dt = float(np.median(np.diff(t)))
+    dev = x - low_pass(x, dt, above)
+    w = (t >= t[-1] - skip_end - window) & (t <= t[-1] - skip_end)
+    xs = dev[w] - dev[w].mean()
+    spec = np.abs(np.fft.rfft(xs * np.hanning(len(xs)))) ** 2
+    f = np.fft.rfftfreq(len(xs), dt)
+    total = spec.sum()
+    norm = len(xs) * float(np.sum(np.hanning(len(xs)) ** 2))  # A = sqrt(4 E / norm) for A cos(wt)
+    peaks = [k for k in range(1, len(spec) - 1) if spec[k] >= spec[k - 1] and spec[k] > spec[k + 1]]
+    out = []
+    for k in peaks:
+        e = spec[max(k - half_width, 0):k + half_width + 1].sum()
+        out.append((round(float(f[k]), 2), round(float(e / total), 3), round(float(np.sqrt(4 * e / norm)), 1)))
+    out.sort(key=lambda p: -p[1])
+    # A line's neighbours within its own half width are its side lobes, not lines.
+    kept: list = []
+    df = f[1] - f[0]
+    for fr, e, amp in out:
+        if e >= share and all(abs(fr - g) > half_width * df for g, _, _ in kept):
+            kept.append((fr, e, amp))
+    return kept
 
 
 def roll_figures(t: np.ndarray, force: np.ndarray, window: float) -> dict:
@@ -123,6 +178,10 @@ def main(argv=None) -> int:
     ap.add_argument("--sag", action="store_true", help="place the spans in their sag (initial.sag)")
     ap.add_argument("--wrap", action="store_true", help='wrap contact (belt.pulley_contact = "wrap") on top')
     ap.add_argument("--roll-wrap", action="store_true", help='wrap contact on the rolls (belt.idler_contact = "wrap")')
+    ap.add_argument("--windows", type=float, default=None,
+                    help="also print the test figure in successive windows of this many s, and the lines "
+                         "above 2 Hz over the last --window s")
+    ap.add_argument("--save", help="write time and drive torque of the (last) variant to this .npz")
     ap.add_argument("--loss-factor", type=float, default=0.1, help="belt.loss_factor of the zener variants")
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="belt.loss_frequency, Hz")
     args = ap.parse_args(argv)
@@ -153,6 +212,11 @@ def main(argv=None) -> int:
                "drive_torque": figures(res.time, res.drive_torque[:, j], args.window),
                "friction_torque": figures(res.time, -res.friction_torque[:, j], args.window),
                "roll_force": roll_figures(res.time, res.idler_force, args.window)}
+        if args.windows:
+            out["windows"] = window_figures(res.time, res.drive_torque[:, j], args.windows)
+            out["lines"] = lines(res.time, res.drive_torque[:, j], args.window)
+        if args.save:
+            np.savez(args.save, time=res.time, torque=res.drive_torque[:, j])
         print(json.dumps(out), flush=True)
     return 0
 

@@ -10,6 +10,14 @@ modes").
 
     python benches/ripple_fixtures.py conveyor --idler-contact wrap --loss-factor 0.1
     python benches/ripple_fixtures.py case_g --idler-contact segment --loss-factor 0.2 --loss-frequency 3
+
+Beyond the test: ``--steady`` s at speed (the figures then read over the last 2 s of it),
+``--windows`` (the test figure in successive windows and the lines above 2 Hz over the last
+``--spectrum`` s, benches/ripple_drive.py's ``window_figures`` and ``lines``), and the
+element length and belt speed:
+
+    python benches/ripple_fixtures.py case_g --steady 16 --windows 2 --spectrum 8
+    python benches/ripple_fixtures.py case_g --element 0.19 --speed 1.5
 """
 
 from __future__ import annotations
@@ -22,12 +30,13 @@ from dataclasses import replace
 from pathlib import Path
 
 import beltrs
+from beltrs.conveyor import Conveyor, DriveSpec
 from beltrs.scenes import GUO_WANG, guo_wang_conveyor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from conveyor_300 import conveyor_300, measure, ripple_figures  # noqa: E402
-from ripple_drive import figures  # noqa: E402
+from conveyor_300 import LENGTH, conveyor_300, measure, ripple_figures  # noqa: E402
+from ripple_drive import figures, lines, window_figures  # noqa: E402
 
 RAMP, STEADY, WINDOW = 4.0, 4.0, 2.0  # tests/test_ripple.py
 
@@ -38,23 +47,55 @@ def main(argv=None) -> int:
     ap.add_argument("--idler-contact", default="wrap", choices=["segment", "wrap"])
     ap.add_argument("--loss-factor", type=float, default=0.0)
     ap.add_argument("--loss-frequency", type=float, default=5.0, help="Hz")
+    ap.add_argument("--steady", type=float, default=STEADY, help="s at speed after the start")
+    ap.add_argument("--ramp", type=float, default=RAMP, help="s of the Harrison start")
+    ap.add_argument("--element", type=float, default=None, help="element length, m (default: the builder's)")
+    ap.add_argument("--speed", type=float, default=None,
+                    help="belt speed, m/s (default 2; case G keeps its material per metre, the 300 m conveyor its "
+                         "500 t/h)")
+    ap.add_argument("--windows", type=float, default=None, help="also the figure in successive windows of this many s")
+    ap.add_argument("--spectrum", type=float, default=8.0, help="s analysed for the lines (with --windows)")
+    ap.add_argument("--drum-friction", default="default", choices=["default", "equal", "creep"],
+                    help="the drums' friction: the builder's (stick-force, mu_s 0.4, mu_k 0.35), mu_s = mu_k = 0.35 "
+                         "(no stick-slip), or the creep model with the builder's coefficients")
+    ap.add_argument("--pi", action="store_true",
+                    help="a PI speed controller (beltrs.SpeedController, default gains) on the head drive instead of "
+                         "the ideal speed follower")
     ap.add_argument("--save", help="write the measured record (time, tension, torque, ...) to this .npz")
     a = ap.parse_args(argv)
 
     def belt(scene: beltrs.Scene) -> beltrs.Scene:
-        return replace(scene, belt=replace(scene.belt, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
-                                           loss_frequency=a.loss_frequency))
+        scene = replace(scene, belt=replace(scene.belt, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
+                                            loss_frequency=a.loss_frequency))
+        if a.drum_friction == "equal":
+            scene = replace(scene, pulleys=[replace(p, friction=replace(p.friction, static=p.friction.kinetic))
+                                            for p in scene.pulleys])
+        elif a.drum_friction == "creep":
+            scene = replace(scene, pulleys=[replace(p, friction=replace(p.friction, model="creep"))
+                                            for p in scene.pulleys])
+        if a.pi:
+            scene = replace(scene, pulleys=[replace(p, drive=replace(p.drive, controller=beltrs.SpeedController()))
+                                            if p.drive is not None else p for p in scene.pulleys])
+        return scene
 
     t0 = time.perf_counter()
     if a.which == "case_g":
         length = 150.0
-        curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
-        sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length)))
+        curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=a.ramp)
+        kw = {} if a.element is None else {"element_length": a.element}
+        sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, **kw)))
         sim.stabilise(tolerance=1e-5, max_steps=400_000)
-        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + STEADY)
+        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", a.ramp + a.steady)
     else:
-        sim = beltrs.Simulation(belt(conveyor_300(ramp=RAMP).scene()))
-        data = measure(sim, (290.0, 0.0), "head", RAMP + STEADY)
+        kw = {} if a.element is None else {"element_length": a.element}
+        if a.speed is None:
+            c = conveyor_300(ramp=a.ramp, **kw)
+        else:
+            c = Conveyor(profile=[(0.0, 0.0), (LENGTH, 0.0)], belt="ST1250", capacity=500.0, speed=a.speed,
+                         drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=a.speed,
+                                                                                 ramp=a.ramp))], **kw)
+        sim = beltrs.Simulation(belt(c.scene()))
+        data = measure(sim, (290.0, 0.0), "head", a.ramp + a.steady)
     f = ripple_figures(data, WINDOW)
     if a.save:
         import numpy as np
@@ -64,7 +105,11 @@ def main(argv=None) -> int:
     f.update(which=a.which, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
              loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
-             wall_s=time.perf_counter() - t0)
+             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, ramp=a.ramp, steady=a.steady,
+             element=a.element, speed=a.speed, nodes=sim.nodes)
+    if a.windows:
+        f.update(windows=window_figures(data["time"], data["torque"], a.windows),
+                 lines=lines(data["time"], data["torque"], a.spectrum))
     print(json.dumps(f), flush=True)
     return 0
 
