@@ -47,11 +47,19 @@ def measure(sim: beltrs.Simulation, probe, pulley: str, duration: float, interva
     return {k: np.concatenate(v) for k, v in out.items()}
 
 
-def ripple_figures(data: dict, window: float, cutoff: float = 2.0) -> dict:
+def ripple_figures(data: dict, window: float, cutoff: float = 2.0, margin: float = 0.0) -> dict:
     """The issue-12 figures of a :func:`measure` record: raw and low-passed (below
-    ``cutoff`` Hz) peak of the probe tension, the largest element tension, and over the last
-    ``window`` s the drive torque's mean, its ripple above ``cutoff`` (max |tau - tau_low| /
-    |mean|) and half its peak-to-peak over the mean."""
+    ``cutoff`` Hz) peak of the probe tension, the largest element tension, and over the
+    ``window`` s ending ``margin`` s before the record's end the drive torque's mean, its
+    ripple above ``cutoff`` (max |tau - tau_low| / |mean|) and half its peak-to-peak over the
+    mean.
+
+    ``margin``: the low-pass (:func:`beltrs.analysis.low_pass`, a brick-wall cut of the
+    mirrored record) rings near the record's ends, where the mirror breaks the signal's
+    slope, and its error there decays only as 1/(2 pi cutoff t); a window that ends at the
+    record's last sample measures that ringing, not the torque (case G with roll wrap: 0.83
+    against 0.46 for the same window filtered inside a 20 s record; 0.52 with 1 s of margin,
+    docs/wrap-contact.md "Session 9: what is left")."""
     import numpy as np
 
     from beltrs.analysis import low_pass
@@ -61,7 +69,8 @@ def ripple_figures(data: dict, window: float, cutoff: float = 2.0) -> dict:
     low = low_pass(data["tension"], step, cutoff)
     tau = data["torque"]
     tau_low = low_pass(tau, step, cutoff)
-    w = t >= t[-1] - window
+    end = t[-1] - margin
+    w = (t >= end - window) & (t <= end + 1e-9)
     mean = float(tau[w].mean())
     return {
         "raw_peak": float(data["tension"].max()),

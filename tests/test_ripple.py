@@ -14,7 +14,7 @@ belt's path round it, so the strand leaves on the tangent at the drum's speed.
 Tolerance: 3 % is the issue's target. The low-passed peak is the converged engineering
 figure (within 1 % from 0.2 m to 0.05 m elements, docs/accuracy.md), so it is read from the
 same run. With nodal contact these runs read +7.2 % (case G, 150 m) and +9.4 % (300 m);
-at the builders' defaults (wrap contact, sag placement) +1.73 % and +1.10 %
+at the builders' defaults (wrap contact, sag placement) +1.62 % and +0.98 %
 (docs/wrap-contact.md, benches/ripple.py).
 
 The second target, a steady drive torque within 5 % of its mean, is not met (strict xfail,
@@ -25,14 +25,14 @@ benches/ripple_fixtures.py): the largest part is the idler rolls' chordal action
 element over a roll lifting its nodes off the belt's curve at the node-passing frequency v/l
 (lines at its harmonics, in phase over all rolls when the pitch is a whole number of
 elements); measuring the elements over a roll along the belt's path
-(``belt.idler_contact = "wrap"``) brings the fixtures to 0.83 and 0.42. What is left
+(``belt.idler_contact = "wrap"``) brings the fixtures to 0.52 and 0.39 (0.83 and 0.42 with the
+window at the record's end, before MARGIN). What is left
 (session 9, docs/wrap-contact.md "Session 9: what is left"; benches/ripple_fixtures.py
 ``--steady 16 --windows 2``): the figure does not fall over 16 s at speed, but it holds
 mostly the start's ringing of the strands' longitudinal modes, damped at zeta ~ 1e-3 (case
 G: the loop's 2.02 Hz mode, just above the 2 Hz cut-off, 0.30 of the mean; 300 m: the
 takeup's 0.59 Hz swing of 1.7x the mean, which reverses the torque, and lines at 2.4-4.4
-Hz); on case G the low-pass's end effect at the record's last sample (the same window
-filtered inside a 20 s record reads 0.46); the lumped weight riding the rolls' kinks at
+Hz); the lumped weight riding the rolls' kinks at
 v/l, in phase on case G whose pitches are whole numbers of elements (10 Hz, 0.13); drum
 stick-slip spikes above 80 Hz (0.06-0.20). A viscoelastic belt (``belt.loss_factor`` 0.2)
 brings them to 0.14 and 0.12, and no published loss factor for a conveyor belt in tension
@@ -53,6 +53,10 @@ from conveyor_300 import conveyor_300, measure, ripple_figures
 RAMP = 4.0  # s, Harrison to 2 m/s
 STEADY = 4.0  # s at full speed
 WINDOW = 2.0  # s of steady running for the torque
+# s run after the torque's window, so that the low-pass's ringing at the record's end stays
+# outside it (ripple_figures; measured on case G with roll wrap: window at the record's end
+# 0.83, 1 s inside it 0.52, inside a 20 s record 0.46).
+MARGIN = 1.0
 
 
 def wrapped(scene: beltrs.Scene) -> beltrs.Scene:
@@ -67,8 +71,8 @@ def case_g():
     assert scene.belt.pulley_contact == "wrap"  # the builder's default
     sim = beltrs.Simulation(scene)
     sim.stabilise(tolerance=1e-5, max_steps=400_000)
-    data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + STEADY)
-    return ripple_figures(data, WINDOW)
+    data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", RAMP + STEADY + MARGIN)
+    return ripple_figures(data, WINDOW, margin=MARGIN)
 
 
 @pytest.fixture(scope="module")
@@ -80,14 +84,15 @@ def conveyor():
     scene = conveyor_300(ramp=RAMP).scene()
     assert scene.belt.pulley_contact == "wrap" and scene.initial.sag  # the builder's defaults
     sim = beltrs.Simulation(scene)
-    data = measure(sim, (290.0, 0.0), "head", RAMP + STEADY)
-    return ripple_figures(data, WINDOW)
+    data = measure(sim, (290.0, 0.0), "head", RAMP + STEADY + MARGIN)
+    return ripple_figures(data, WINDOW, margin=MARGIN)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("which", [
     "case_g",
-    # Measured +1.10 % (raw 56.14 kN at 4.0 s, 55.53 kN below 2 Hz at 1.2 s); the same
+    # Measured +0.98 % (session 9, with the 1 s MARGIN run after; +1.10 % before it: raw
+    # 56.14 kN at 4.0 s, 55.53 kN below 2 Hz at 1.2 s); the same
     # start with nodal contact reads +5.98 %.
     "conveyor",
 ])
@@ -98,10 +103,10 @@ def test_raw_peak_within_three_percent_of_the_low_passed_peak(which, request):
 
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="open: the rolls' chordal action (segment contact: 3.26 case G, 1.68 "
-                   "300 m; roll wrap: 0.83, 0.42), then the start's ringing of the strands' modes (zeta ~ 1e-3; "
-                   "case G's 2.02 Hz mode at the cut-off, the 300 m takeup swing), the low-pass's end effect "
-                   "(case G 0.83 vs 0.46 inside a longer record), the lumped weight's cogging at v/l when the "
-                   "pitches are whole numbers of elements (case G 10 Hz, 0.13) and drum stick-slip spikes; "
+                   "300 m; roll wrap: 0.52, 0.39), then the start's ringing of the strands' modes (zeta ~ 1e-3; "
+                   "case G's 2.02 Hz mode at the cut-off, the 300 m takeup swing), the lumped weight's "
+                   "cogging at v/l when the pitches are whole numbers of elements (case G 10 Hz, 0.13) and drum "
+                   "stick-slip spikes; "
                    "case G 0.037 with a PI drive and 0.19 m elements (docs/wrap-contact.md, Session 9)")
 @pytest.mark.parametrize("which", ["case_g", "conveyor"])
 def test_steady_drive_torque_ripple_under_five_percent(which, request):
