@@ -34,15 +34,15 @@ fn params(m: &Model, e: usize, damped: bool) -> SdeParams {
     }
 }
 
-/// A body's half-length vector l′ = (l/2)(cos φ, sin φ) (the same bits as
-/// [`LinkState::half_vector`]) and its unit axis (cos φ, sin φ), zero for an open belt's
-/// end point (length 0): one sine and cosine for both.
+/// The unit axis of a body from its half-length vector `h` and length `l`; zero for an
+/// open belt's end point (length 0).
 #[inline]
-fn half_and_axis(b: &LinkState) -> (V2, V2) {
-    let (s, c) = b.angle.sin_cos();
-    let axis = V2::new(c, s);
-    let half = axis * (0.5 * b.length);
-    (half, if b.length > 0.0 { axis } else { V2::zeros() })
+fn unit_axis(h: V2, l: f64) -> V2 {
+    if l > 0.0 {
+        h / l
+    } else {
+        V2::zeros()
+    }
 }
 
 /// SDE forces and torques of the chain and the body weights −m·g ŷ. **Writes**
@@ -62,10 +62,11 @@ pub fn chain(cx: &mut StageContext<'_>) {
         *t = 0.0;
     }
     let damped = cx.effects.damping;
-    // Each body's half-length vector and unit axis (one sine and cosine) once, carried to
+    // Each body's half-length vector (a sine and a cosine) and unit axis once, carried to
     // the next joint.
     let first = link(m, s, 0);
-    let (first_half, first_axis) = half_and_axis(&first);
+    let first_half = first.half_vector();
+    let first_axis = unit_axis(first_half, first.length);
     let (mut left, mut hl, mut al) = (first, first_half, first_axis);
     for e in 0..m.elements {
         let r = if e + 1 == n { 0 } else { e + 1 };
@@ -73,8 +74,8 @@ pub fn chain(cx: &mut StageContext<'_>) {
             (first, first_half, first_axis)
         } else {
             let b = link(m, s, r);
-            let (h, a) = half_and_axis(&b);
-            (b, h, a)
+            let h = b.half_vector();
+            (b, h, unit_axis(h, b.length))
         };
         let j = joint_with(&left, hl, &right, hr, &params(m, e, damped));
         sc.force[r] += j.force_on_right;
