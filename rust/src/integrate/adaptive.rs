@@ -77,21 +77,21 @@ impl Simulation {
     fn unpack(&mut self, y: &[f64]) {
         let n = self.model.nodes;
         let s = &mut self.state;
-        let mut k = 0;
-        for p in &mut s.position {
-            *p = Vector2::new(y[k], y[k + 1]);
-            k += 2;
+        // Pairs through chunks (no bounds check per component).
+        for (p, c) in s.position.iter_mut().zip(y.chunks_exact(2)) {
+            *p = Vector2::new(c[0], c[1]);
         }
+        let mut k = 2 * s.position.len();
         for &d in &self.model.dofs.rigid {
             if let (Some(q), _) = s.rigid_mut(d) {
                 *q = y[k];
                 k += 1;
             }
         }
-        for v in &mut s.velocity {
-            *v = Vector2::new(y[k], y[k + 1]);
-            k += 2;
+        for (v, c) in s.velocity.iter_mut().zip(y[k..].chunks_exact(2)) {
+            *v = Vector2::new(c[0], c[1]);
         }
+        k += 2 * s.velocity.len();
         debug_assert_eq!(s.velocity.len(), n);
         for &d in &self.model.dofs.rigid {
             *s.rigid_speed_mut(d) = y[k];
@@ -114,21 +114,21 @@ impl Simulation {
         let dt = self.model.dt;
         self.evaluate_full(Effects::ALL, dt, dt, 1.0, false);
         let (m, s, sc) = (&self.model, &self.state, &self.scratch);
-        let mut k = 0;
-        for v in &s.velocity {
-            dy[k] = v.x;
-            dy[k + 1] = v.y;
-            k += 2;
+        for (d, v) in dy.chunks_exact_mut(2).zip(&s.velocity) {
+            d[0] = v.x;
+            d[1] = v.y;
         }
+        let mut k = 2 * s.velocity.len();
         for &d in &m.dofs.rigid {
             if let (Some(_), speed) = s.rigid(d) {
                 dy[k] = speed;
                 k += 1;
             }
         }
-        for (f, im) in sc.force.iter().zip(&self.inertia.inv_mass) {
-            dy[k] = f.x * im;
-            dy[k + 1] = f.y * im;
+        let accelerations = dy[k..].chunks_exact_mut(2).zip(&sc.force);
+        for ((d, f), im) in accelerations.zip(&self.inertia.inv_mass) {
+            d[0] = f.x * im;
+            d[1] = f.y * im;
             k += 2;
         }
         let mut power = 0.0;

@@ -333,12 +333,14 @@ impl Rkf45 {
         );
         let mut s = 0.0;
         let mut n = 0usize;
-        for i in 0..e.len() {
+        let len = e.len();
+        let (y, y_new, scales) = (&y[..len], &y_new[..len], &self.scales[..len]);
+        for i in 0..len {
             let (a, b) = (y[i], y_new[i]);
             if i >= self.dormant_from && e[i] == 0.0 && a == 0.0 && b == 0.0 {
                 continue;
             }
-            let q = e[i] / (at * self.scales[i] + rt * a.abs().max(b.abs()));
+            let q = e[i] / (at * scales[i] + rt * a.abs().max(b.abs()));
             s += q * q;
             n += 1;
         }
@@ -431,7 +433,16 @@ impl Rkf45 {
             let k: [&[f64]; 6] = std::array::from_fn(|s| &self.k[s][..n]);
             combine(&mut self.low, y, h, B4, k);
             combine(&mut self.high, y, h, B5, k);
-            let bad = (0..n).find(|&i| !(self.low[i].is_finite() && self.high[i].is_finite()));
+            // Whether all are finite in one pass without an early exit (vectorised), then
+            // the first that is not, only when one is not.
+            let finite = |i: usize| self.low[i].is_finite() && self.high[i].is_finite();
+            let all_finite = (self.low.iter().zip(&self.high))
+                .fold(true, |ok, (lo, hi)| ok & lo.is_finite() & hi.is_finite());
+            let bad = if all_finite {
+                None
+            } else {
+                (0..n).find(|&i| !finite(i))
+            };
             if let Some(index) = bad {
                 // A non-finite trial may be an overshoot of an unstable step: shrink first,
                 // fail only when the step cannot shrink further.
@@ -449,8 +460,8 @@ impl Rkf45 {
                 continue;
             }
             // The error estimate is the same for both propagation choices.
-            for i in 0..n {
-                self.stage[i] = self.high[i] - self.low[i];
+            for (e, (hi, lo)) in self.stage.iter_mut().zip(self.high.iter().zip(&self.low)) {
+                *e = hi - lo;
             }
             let err = self.norm(&self.stage, y, &self.low);
             self.last_error_norm = err;
