@@ -9,7 +9,7 @@ Run from the repository root, with beltrs installed::
 Scenes (each with both belt formulations, ``belt.formulation``):
 
 - ``conveyor``: ``beltrs.scenes.guo_wang_conveyor(length=200, start="running")``, case G's
-  conveyor at 200 m (about 2000 elements of 0.2 m, 255 idlers, material, speed-controlled
+  conveyor at 200 m (about 2000 elements of 0.2 m, 232 idlers, material, speed-controlled
   head drive, tail takeup), from its running design start, 200 steps of warm-up.
 - ``case_k``: ``beltrs.scenes.kubas_case_k()`` (150 elements, two pulleys with Kubas's
   nonlinear contact, stick-force friction, torque drive), relaxed, 20 000 steps of warm-up.
