@@ -252,7 +252,7 @@ impl DofLayout {
 
 impl State {
     /// Speed of a rigid degree of freedom (m/s or rad/s, at the state's velocity instant).
-    #[inline]
+    #[inline(always)]
     pub fn rigid_speed(&self, d: Rigid) -> f64 {
         match d {
             Rigid::Takeup(j) => self.takeup_speed[j],
@@ -263,7 +263,7 @@ impl State {
     }
 
     /// Coordinate (`None` where it is not kept) and speed of a rigid degree of freedom.
-    #[inline]
+    #[inline(always)]
     pub fn rigid(&self, d: Rigid) -> (Option<f64>, f64) {
         match d {
             Rigid::Takeup(j) => (Some(self.takeup_travel[j]), self.takeup_speed[j]),
@@ -274,7 +274,7 @@ impl State {
     }
 
     /// Mutable speed of a rigid degree of freedom.
-    #[inline]
+    #[inline(always)]
     pub fn rigid_speed_mut(&mut self, d: Rigid) -> &mut f64 {
         match d {
             Rigid::Takeup(j) => &mut self.takeup_speed[j],
@@ -286,7 +286,7 @@ impl State {
 
     /// Coordinate and speed of a rigid degree of freedom, the coordinate `None` where it is
     /// not kept (idler angles).
-    #[inline]
+    #[inline(always)]
     pub fn rigid_mut(&mut self, d: Rigid) -> (Option<&mut f64>, &mut f64) {
         match d {
             Rigid::Takeup(j) => (Some(&mut self.takeup_travel[j]), &mut self.takeup_speed[j]),

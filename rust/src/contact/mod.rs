@@ -239,7 +239,7 @@ pub fn pulley_body_contact(
     out: &mut PulleyContacts,
     law: impl Fn(f64, f64) -> f64,
 ) -> V2 {
-    use crate::belt::rigid::contact::{body_contact, BodyOnPulley};
+    use crate::belt::rigid::contact::{body_contact_with, BodyOnPulley, Chord};
     let Bodies {
         position: x,
         velocity: v,
@@ -250,8 +250,13 @@ pub fn pulley_body_contact(
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();
+    // The chord's geometry of the last body's length (the bodies of a belt share one).
+    let mut chord = Chord::new(0.0, body.radius);
     for k in 0..window.len {
         let i = (window.first + k) % n;
+        if length[i].to_bits() != chord.length.to_bits() {
+            chord = Chord::new(length[i], body.radius);
+        }
         let b = BodyOnPulley {
             position: x[i],
             velocity: v[i],
@@ -259,7 +264,14 @@ pub fn pulley_body_contact(
             spin: spin[i],
             length: length[i],
         };
-        let c = body_contact(&b, body.center, body.center_velocity, body.radius, &law);
+        let c = body_contact_with(
+            &b,
+            &chord,
+            body.center,
+            body.center_velocity,
+            body.radius,
+            &law,
+        );
         if c.normal_force <= 0.0 {
             continue;
         }

@@ -39,6 +39,22 @@ use crate::simulation::Simulation;
 use crate::state::Rigid;
 use nalgebra::Vector2;
 
+/// The rigid degrees of freedom before the belt bodies' rotations, and the bodies' range
+/// of belt points (`DofLayout::with_bodies` appends them last, in order): the flat state
+/// reads and writes the bodies' angles, spins, torques and inertias as slices, in the
+/// layout's order (the same vector as one dispatch per degree of freedom).
+fn split_bodies(rigid: &[Rigid]) -> (&[Rigid], std::ops::Range<usize>) {
+    let p = (rigid.iter())
+        .position(|d| matches!(d, Rigid::Body(_)))
+        .unwrap_or(rigid.len());
+    let bodies = match rigid.get(p) {
+        Some(&Rigid::Body(i)) => i..i + (rigid.len() - p),
+        _ => 0..0,
+    };
+    debug_assert!((rigid[p..].iter().zip(bodies.clone())).all(|(&d, i)| d == Rigid::Body(i)));
+    (&rigid[..p], bodies)
+}
+
 /// Absolute-tolerance scale of the drives' work in the error norm: large enough that it
 /// never sets the step (the work is an output, not a state the forces depend on).
 const WORK_SCALE: f64 = 1e300;
@@ -60,15 +76,18 @@ impl Simulation {
     /// The state as one flat vector (see [`Simulation::flat_len`]).
     fn pack(&self, y: &mut Vec<f64>) {
         let s = &self.state;
+        let (head, bodies) = split_bodies(&self.model.dofs.rigid);
         y.clear();
         y.extend(s.position.iter().flat_map(|p| [p.x, p.y]));
-        for &d in &self.model.dofs.rigid {
+        for &d in head {
             if let (Some(q), _) = s.rigid(d) {
                 y.push(q);
             }
         }
+        y.extend_from_slice(&s.body_angle[bodies.clone()]);
         y.extend(s.velocity.iter().flat_map(|v| [v.x, v.y]));
-        y.extend(self.model.dofs.rigid.iter().map(|&d| s.rigid_speed(d)));
+        y.extend(head.iter().map(|&d| s.rigid_speed(d)));
+        y.extend_from_slice(&s.body_spin[bodies]);
         y.push(s.drive_work);
         y.extend_from_slice(&s.creep);
     }
@@ -77,26 +96,32 @@ impl Simulation {
     fn unpack(&mut self, y: &[f64]) {
         let n = self.model.nodes;
         let s = &mut self.state;
-        let mut k = 0;
-        for p in &mut s.position {
-            *p = Vector2::new(y[k], y[k + 1]);
-            k += 2;
+        // Pairs through chunks (no bounds check per component).
+        for (p, c) in s.position.iter_mut().zip(y.chunks_exact(2)) {
+            *p = Vector2::new(c[0], c[1]);
         }
-        for &d in &self.model.dofs.rigid {
+        let (head, bodies) = split_bodies(&self.model.dofs.rigid);
+        let nb = bodies.len();
+        let mut k = 2 * s.position.len();
+        for &d in head {
             if let (Some(q), _) = s.rigid_mut(d) {
                 *q = y[k];
                 k += 1;
             }
         }
-        for v in &mut s.velocity {
-            *v = Vector2::new(y[k], y[k + 1]);
-            k += 2;
+        s.body_angle[bodies.clone()].copy_from_slice(&y[k..k + nb]);
+        k += nb;
+        for (v, c) in s.velocity.iter_mut().zip(y[k..].chunks_exact(2)) {
+            *v = Vector2::new(c[0], c[1]);
         }
+        k += 2 * s.velocity.len();
         debug_assert_eq!(s.velocity.len(), n);
-        for &d in &self.model.dofs.rigid {
+        for &d in head {
             *s.rigid_speed_mut(d) = y[k];
             k += 1;
         }
+        s.body_spin[bodies].copy_from_slice(&y[k..k + nb]);
+        k += nb;
         s.drive_work = y[k];
         s.creep.copy_from_slice(&y[k + 1..]);
     }
@@ -114,31 +139,42 @@ impl Simulation {
         let dt = self.model.dt;
         self.evaluate_full(Effects::ALL, dt, dt, 1.0, false);
         let (m, s, sc) = (&self.model, &self.state, &self.scratch);
-        let mut k = 0;
-        for v in &s.velocity {
-            dy[k] = v.x;
-            dy[k + 1] = v.y;
-            k += 2;
+        for (d, v) in dy.chunks_exact_mut(2).zip(&s.velocity) {
+            d[0] = v.x;
+            d[1] = v.y;
         }
-        for &d in &m.dofs.rigid {
+        let (head, bodies) = split_bodies(&m.dofs.rigid);
+        let nb = bodies.len();
+        let mut k = 2 * s.velocity.len();
+        for &d in head {
             if let (Some(_), speed) = s.rigid(d) {
                 dy[k] = speed;
                 k += 1;
             }
         }
-        for (f, im) in sc.force.iter().zip(&self.inertia.inv_mass) {
-            dy[k] = f.x * im;
-            dy[k + 1] = f.y * im;
+        dy[k..k + nb].copy_from_slice(&s.body_spin[bodies.clone()]);
+        k += nb;
+        let accelerations = dy[k..].chunks_exact_mut(2).zip(&sc.force);
+        for ((d, f), im) in accelerations.zip(&self.inertia.inv_mass) {
+            d[0] = f.x * im;
+            d[1] = f.y * im;
             k += 2;
         }
         let mut power = 0.0;
-        for &d in &m.dofs.rigid {
+        for &d in head {
             dy[k] = sc.rigid_force(m, d) / self.inertia.rigid(m, d);
             k += 1;
             if let Rigid::Pulley(j) = d {
                 power += sc.drive_torque[j] * s.pulley_omega[j];
             }
         }
+        let spin_rates = dy[k..k + nb]
+            .iter_mut()
+            .zip(&sc.body_torque[bodies.clone()]);
+        for ((rate, &torque), &inertia) in spin_rates.zip(&self.inertia.body_inertia[bodies]) {
+            *rate = torque / inertia;
+        }
+        k += nb;
         dy[k] = power;
         let creep = &mut dy[k + 1..];
         creep.fill(0.0);

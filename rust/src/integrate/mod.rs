@@ -104,7 +104,7 @@ impl Inertia {
     }
 
     /// Inertia of a rigid degree of freedom (kg or kg·m²).
-    #[inline]
+    #[inline(always)]
     pub fn rigid(&self, model: &Model, d: Rigid) -> f64 {
         match d {
             Rigid::Takeup(j) => self.takeup_mass[j],
@@ -117,7 +117,7 @@ impl Inertia {
 
 impl crate::pipeline::Scratch {
     /// Generalized force on a rigid degree of freedom from the last evaluation (N or N·m).
-    #[inline]
+    #[inline(always)]
     pub fn rigid_force(&self, model: &Model, d: Rigid) -> f64 {
         match d {
             Rigid::Takeup(j) => match &model.pulleys[j].takeup {

@@ -217,6 +217,25 @@ const B5: [f64; 6] = [
     2.0 / 55.0,
 ];
 
+/// `out` = `y` + h·Σⱼ aⱼ·kⱼ per component, the sum taken in j order from 0: one stage's
+/// state, or a solution of the step. The same arithmetic as the loop over components with
+/// the sum inside, written with the stage count a constant and the slices cut to one
+/// length, so that it compiles without bounds checks and vectorised across components
+/// (each component's operations and their order unchanged: the same bits).
+#[inline(always)]
+fn combine<const S: usize>(out: &mut [f64], y: &[f64], h: f64, a: [f64; S], k: [&[f64]; S]) {
+    let n = out.len();
+    let y = &y[..n];
+    let k = k.map(|kj| &kj[..n]);
+    for i in 0..n {
+        let mut acc = 0.0;
+        for j in 0..S {
+            acc += a[j] * k[j][i];
+        }
+        out[i] = y[i] + h * acc;
+    }
+}
+
 /// The adaptive integrator with its work arrays, step size and counters.
 #[derive(Debug, Clone)]
 pub struct Rkf45 {
@@ -314,12 +333,14 @@ impl Rkf45 {
         );
         let mut s = 0.0;
         let mut n = 0usize;
-        for i in 0..e.len() {
+        let len = e.len();
+        let (y, y_new, scales) = (&y[..len], &y_new[..len], &self.scales[..len]);
+        for i in 0..len {
             let (a, b) = (y[i], y_new[i]);
             if i >= self.dormant_from && e[i] == 0.0 && a == 0.0 && b == 0.0 {
                 continue;
             }
-            let q = e[i] / (at * self.scales[i] + rt * a.abs().max(b.abs()));
+            let q = e[i] / (at * scales[i] + rt * a.abs().max(b.abs()));
             s += q * q;
             n += 1;
         }
@@ -409,19 +430,19 @@ impl Rkf45 {
             }
             self.stages(*t, y, h, f, 1);
             self.stats.evaluations += 5;
-            let mut bad = None;
-            for i in 0..n {
-                let (mut lo, mut hi) = (0.0, 0.0);
-                for s in 0..6 {
-                    lo += B4[s] * self.k[s][i];
-                    hi += B5[s] * self.k[s][i];
-                }
-                self.low[i] = y[i] + h * lo;
-                self.high[i] = y[i] + h * hi;
-                if bad.is_none() && !(self.low[i].is_finite() && self.high[i].is_finite()) {
-                    bad = Some(i);
-                }
-            }
+            let k: [&[f64]; 6] = std::array::from_fn(|s| &self.k[s][..n]);
+            combine(&mut self.low, y, h, B4, k);
+            combine(&mut self.high, y, h, B5, k);
+            // Whether all are finite in one pass without an early exit (vectorised), then
+            // the first that is not, only when one is not.
+            let finite = |i: usize| self.low[i].is_finite() && self.high[i].is_finite();
+            let all_finite = (self.low.iter().zip(&self.high))
+                .fold(true, |ok, (lo, hi)| ok & lo.is_finite() & hi.is_finite());
+            let bad = if all_finite {
+                None
+            } else {
+                (0..n).find(|&i| !finite(i))
+            };
             if let Some(index) = bad {
                 // A non-finite trial may be an overshoot of an unstable step: shrink first,
                 // fail only when the step cannot shrink further.
@@ -439,8 +460,8 @@ impl Rkf45 {
                 continue;
             }
             // The error estimate is the same for both propagation choices.
-            for i in 0..n {
-                self.stage[i] = self.high[i] - self.low[i];
+            for (e, (hi, lo)) in self.stage.iter_mut().zip(self.high.iter().zip(&self.low)) {
+                *e = hi - lo;
             }
             let err = self.norm(&self.stage, y, &self.low);
             self.last_error_norm = err;
@@ -501,12 +522,32 @@ impl Rkf45 {
         F: FnMut(f64, &[f64], &mut [f64]),
     {
         for s in from..6 {
-            for i in 0..y.len() {
-                let mut acc = 0.0;
-                for (j, a) in A[s].iter().enumerate().take(s) {
-                    acc += a * self.k[j][i];
-                }
-                self.stage[i] = y[i] + h * acc;
+            let (stage, k) = (&mut self.stage, &self.k);
+            match s {
+                0 => combine(stage, y, h, [], []),
+                1 => combine(stage, y, h, [A[1][0]], [&k[0]]),
+                2 => combine(stage, y, h, [A[2][0], A[2][1]], [&k[0], &k[1]]),
+                3 => combine(
+                    stage,
+                    y,
+                    h,
+                    [A[3][0], A[3][1], A[3][2]],
+                    [&k[0], &k[1], &k[2]],
+                ),
+                4 => combine(
+                    stage,
+                    y,
+                    h,
+                    [A[4][0], A[4][1], A[4][2], A[4][3]],
+                    [&k[0], &k[1], &k[2], &k[3]],
+                ),
+                _ => combine(
+                    stage,
+                    y,
+                    h,
+                    [A[5][0], A[5][1], A[5][2], A[5][3], A[5][4]],
+                    [&k[0], &k[1], &k[2], &k[3], &k[4]],
+                ),
             }
             let (ks, _) = self.k.split_at_mut(s + 1);
             f(t + C[s] * h, &self.stage, &mut ks[s]);

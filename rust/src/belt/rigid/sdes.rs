@@ -149,13 +149,17 @@ pub fn joint_with(left: &LinkState, hl: V2, right: &LinkState, hr: V2, p: &SdePa
     let relative_angle = wrap_angle(right.angle - left.angle);
     let bending_moment = p.torsional_stiffness * relative_angle
         + p.torsional_damping * (right.angular_velocity - left.angular_velocity);
+    // The negations written per component, and l′ × F for (−l′) × (−F) (the same
+    // products, so the same bits): nalgebra's `Neg` on a vector is a loop over its
+    // components that a build without cross-crate inlining (maturin develop with LTO off)
+    // kept, flipping each sign bit in memory and stalling the loads that follow.
     JointLoad {
         elongation,
         tension,
         direction,
-        force_on_right: -pull,
+        force_on_right: V2::new(-pull.x, -pull.y),
         torque_on_left: cross(hl, pull) + bending_moment,
-        torque_on_right: cross(-hr, -pull) - bending_moment,
+        torque_on_right: cross(hr, pull) - bending_moment,
         bending_moment,
     }
 }

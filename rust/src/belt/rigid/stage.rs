@@ -62,30 +62,32 @@ pub fn chain(cx: &mut StageContext<'_>) {
         *t = 0.0;
     }
     let damped = cx.effects.damping;
-    // Each body's half-length vector (a sine and a cosine) once, carried to the next joint.
+    // Each body's half-length vector (a sine and a cosine) and unit axis once, carried to
+    // the next joint.
     let first = link(m, s, 0);
     let first_half = first.half_vector();
-    let (mut left, mut hl) = (first, first_half);
+    let first_axis = unit_axis(first_half, first.length);
+    let (mut left, mut hl, mut al) = (first, first_half, first_axis);
     for e in 0..m.elements {
         let r = if e + 1 == n { 0 } else { e + 1 };
-        let (right, hr) = if r == 0 {
-            (first, first_half)
+        let (right, hr, ar) = if r == 0 {
+            (first, first_half, first_axis)
         } else {
             let b = link(m, s, r);
-            (b, b.half_vector())
+            let h = b.half_vector();
+            (b, h, unit_axis(h, b.length))
         };
         let j = joint_with(&left, hl, &right, hr, &params(m, e, damped));
         sc.force[r] += j.force_on_right;
         sc.force[e] -= j.force_on_right;
         sc.body_torque[e] += j.torque_on_left;
         sc.body_torque[r] += j.torque_on_right;
-        let axis = unit_axis(hl, left.length) + unit_axis(hr, right.length);
-        sc.tension[e] = if j.direction.dot(&axis) < 0.0 {
+        sc.tension[e] = if j.direction.dot(&(al + ar)) < 0.0 {
             -j.tension
         } else {
             j.tension
         };
-        (left, hl) = (right, hr);
+        (left, hl, al) = (right, hr, ar);
     }
 }
 
