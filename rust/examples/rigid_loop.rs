@@ -21,6 +21,8 @@ use beltrs::scene::IntegratorKind;
 use std::path::Path;
 use std::time::Instant;
 
+mod common;
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let path = args
@@ -67,41 +69,19 @@ fn main() {
     }
     walls.sort_by(f64::total_cmp);
     per_step.sort_by(f64::total_cmp);
-    let fingerprint = sim
-        .state
-        .position
-        .iter()
-        .chain(&sim.state.velocity)
-        .flat_map(|p| [p.x, p.y])
-        .chain(sim.state.body_angle.iter().copied())
-        .chain(sim.state.body_spin.iter().copied())
-        .chain(sim.state.pulley_omega.iter().copied())
-        .chain(sim.state.creep.iter().copied())
-        .fold(0u64, |h, c| {
-            (h ^ c.to_bits())
-                .rotate_left(5)
-                .wrapping_mul(0x100_0000_01b3)
-        });
+    let fingerprint = common::fingerprint(
+        sim.state
+            .position
+            .iter()
+            .chain(&sim.state.velocity)
+            .flat_map(|p| [p.x, p.y])
+            .chain(sim.state.body_angle.iter().copied())
+            .chain(sim.state.body_spin.iter().copied())
+            .chain(sim.state.pulley_omega.iter().copied())
+            .chain(sim.state.creep.iter().copied()),
+    );
     if std::env::var_os("RIGID_LOOP_PROFILE").is_some() {
-        sim.set_profiling(true);
-        let t0 = Instant::now();
-        sim.step(steps).expect("steps");
-        let wall = t0.elapsed().as_secs_f64();
-        let profile = sim.profile.clone().unwrap_or_default();
-        let scale = 1e9 / (elements * steps as f64);
-        for (stage, t) in sim.model.stages.iter().zip(&profile) {
-            println!(
-                "  {:>18}: {:.2} ns per element-step",
-                stage.name(),
-                t * scale
-            );
-        }
-        let staged: f64 = profile.iter().sum();
-        println!(
-            "  {:>18}: {:.2} ns per element-step",
-            "outside stages",
-            (wall - staged) * scale
-        );
+        common::print_stage_profile(&mut sim, steps, elements * steps as f64, "element-step");
     }
     let m = repeats / 2;
     println!(

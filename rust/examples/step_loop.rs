@@ -25,6 +25,8 @@ use beltrs::scene::{BeltParams, FrictionModel, IdlerSpec, PulleySpec, Scene, Tak
 use beltrs::{Simulation, StabiliseOptions};
 use std::time::Instant;
 
+mod common;
+
 fn conveyor(length: f64, nodes: usize, idlers: bool) -> Scene {
     let radius = 0.4;
     let r_idler = 0.0635;
@@ -149,37 +151,16 @@ fn main() {
     walls.sort_by(f64::total_cmp);
     // Fingerprint of the final state, bit for bit: a change that claims to leave the
     // arithmetic unchanged must leave it unchanged.
-    let fingerprint = sim
-        .state
-        .position
-        .iter()
-        .chain(&sim.state.velocity)
-        .flat_map(|p| [p.x, p.y])
-        .fold(0u64, |h, c| {
-            (h ^ c.to_bits())
-                .rotate_left(5)
-                .wrapping_mul(0x100_0000_01b3)
-        });
+    let fingerprint = common::fingerprint(
+        sim.state
+            .position
+            .iter()
+            .chain(&sim.state.velocity)
+            .flat_map(|p| [p.x, p.y]),
+    );
     let node_steps = nodes as f64 * steps as f64;
     if std::env::var_os("STEP_LOOP_PROFILE").is_some() {
-        sim.set_profiling(true);
-        let t0 = Instant::now();
-        sim.step(steps).expect("steps");
-        let wall = t0.elapsed().as_secs_f64();
-        let profile = sim.profile.clone().unwrap_or_default();
-        for (stage, t) in sim.model.stages.iter().zip(&profile) {
-            println!(
-                "  {:>16}: {:.2} ns per node-step",
-                stage.name(),
-                t / node_steps * 1e9
-            );
-        }
-        let staged: f64 = profile.iter().sum();
-        println!(
-            "  {:>16}: {:.2} ns per node-step",
-            "outside stages",
-            (wall - staged) / node_steps * 1e9
-        );
+        common::print_stage_profile(&mut sim, steps, node_steps, "node-step");
     }
     println!(
         "{which} {nodes} nodes, {steps} steps x 5, stages {:?}: {:.2} ns per node-step best, {:.2} median ({:.3e} node-steps/s best); state fingerprint {fingerprint:016x}",
