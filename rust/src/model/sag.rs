@@ -353,10 +353,21 @@ pub(super) fn shape(
                 // kink lies from the circle's centre (the element's chord slope would put
                 // it off the bisector, one piece cutting into the circle: 0.8 mm into a
                 // 0.63 m circle at θ = 0.08, an 80 kN kick per roll).
+                // Each piece's slope read to its node, or to the next one out where the kink
+                // lies within 10⁻³ of an element of it (a slope over a piece of micrometres
+                // is rounding, and once threw the kink metres off; reading every piece under
+                // a quarter element to the next node started a roll at 30 kN).
                 let bisector = kink[e].filter(|&(kk, _, _)| kk == k).map(|(_, xk, yk)| {
-                    let left = ((yk - y[e]) / (xk - xs[e]).max(1e-12)).atan();
-                    let right = ((y[e + 1] - yk) / (xs[e + 1] - xk).max(1e-12)).atan();
-                    ((left - right).max(0.0), (0.5 * (left + right)).tan())
+                    let near = 1e-3 * (xs[e + 1] - xs[e]);
+                    let a = if xk - xs[e] < near && e > 0 { e - 1 } else { e };
+                    let b = if xs[e + 1] - xk < near && e + 1 < m + 1 {
+                        e + 2
+                    } else {
+                        e + 1
+                    };
+                    let left = ((yk - y[a]) / (xk - xs[a]).max(1e-12)).atan();
+                    let right = ((y[b] - yk) / (xs[b] - xk).max(1e-12)).atan();
+                    ((left - right).clamp(0.0, 0.5), (0.5 * (left + right)).tan())
                 });
                 let pull = match kink[e] {
                     // A support pulls where the belt bends down over it (its reaction,
