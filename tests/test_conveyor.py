@@ -97,9 +97,15 @@ def test_scene_structure():
 
 def test_curved_profile_places_the_belt_on_its_idlers():
     # A concave then a convex curve: the belt is placed along the profile (scene.initial.path,
-    # no guide pulleys), every carry roll touching it from below: the belt over each roll
-    # (read by interpolating the nodes in x) lies within 0.5 mm of the roll's top; measured
-    # 0.1 mm at worst, where a curve begins (the guides' polygon was allowed 30 mm).
+    # no guide pulleys), every carry roll touching it from below: the belt's chord over each
+    # roll (read by interpolating the nodes in x) is never more than 0.5 mm above the roll's
+    # top (the guides' polygon was allowed 30 mm). With the builders' roll wrap contact the
+    # belt bends over each roll, so the chord there dips below the top (the belt's path over
+    # the roll is measured along the wrap contact's circle, its top the roll's), or, with a
+    # node next to the roll, lies up to the kink's R_w·θ²/8 above it: measured from -1.90 to
+    # +0.33 mm (segment contact: within 0.1 mm either way, the chord on the roll); and no
+    # node is inside a roll (measured: the closest on its surface to 1 µm; allowed 0.1 mm in:
+    # a node in a roll would start with a penalty kick).
     c = Conveyor(profile=[(0, 0), (80, 0), (160, 8), (240, 8)], curve_radii=[300, 400], belt="EP630/4",
                  capacity=200.0, speed=2.0)
     s = c.scene()
@@ -116,12 +122,18 @@ def test_curved_profile_places_the_belt_on_its_idlers():
 
     upper = x[x[:, 1] > carry_line(x[:, 0]) - r]  # the carry strand (the return runs 2r below)
     order = np.argsort(upper[:, 0])
+    assert s.belt.idler_contact == "wrap"
+    gaps, clear = [], []
     for d in s.idlers:
+        clear.append(np.hypot(*(x - np.asarray(d.center)).T).min() - d.radius)
         if d.center[1] < carry_line(d.center[0]) - r:
             continue  # a return roll
         belt_y = np.interp(d.center[0], upper[order, 0], upper[order, 1])
-        gap = belt_y - (d.center[1] + d.radius)
-        assert abs(gap) < 5e-4, (d.center, gap)
+        gaps.append(belt_y - (d.center[1] + d.radius))
+    print(f"chord over the carry rolls from {min(gaps) * 1e3:.3f} to {max(gaps) * 1e3:.3f} mm of their tops; "
+          f"nodes at least {min(clear) * 1e3:.3f} mm outside the rolls")
+    assert max(gaps) < 5e-4
+    assert min(clear) > -1e-4
 
 
 def test_toml_description_builds_the_same_scene(tmp_path):

@@ -47,13 +47,18 @@ def coasting_conveyor(f: float = 0.05, rotating_mass: float = 30.0) -> Scene:
     )
 
 
-TRIP = 6.0
+# The drive trips at 18 s: its force in steady running is averaged over 2-18 s, two periods of
+# the takeup's slow swing on this short conveyor. Over 4 s windows the mean drive force swings
+# by +-70 N (measured, roll wrap: 1599.6, 1735.7, 1671.3, 1696.6 N over 2-6, 6-10, 10-14, 14-18
+# s; segment rolls 1641.2, 1750.2, 1661.0, 1720.9): the 2-6 s window this test used read
+# -7.1 % (roll wrap) and -4.6 % (segment) of DIN from where the swing stood at 6 s.
+TRIP = 18.0
 
 
 @pytest.fixture(scope="module")
 def coasting_run():
     """A level 40 m builder conveyor (EP630/4, 200 t/h at 1.5 m/s, DIN f = 0.05) whose drive
-    trips at 6 s."""
+    trips at TRIP = 18 s."""
     c = Conveyor(profile=[(0.0, 0.0), (40.0, 0.0)], belt="EP630/4", capacity=200.0, speed=1.5, f=0.05,
                  drives=[DriveSpec("head", start_curve=StartCurve("harrison", speed=1.5, ramp=1.0, start=0.5))],
                  stop=StopSpec(time=TRIP))
@@ -64,17 +69,29 @@ def coasting_run():
     return c, scene, sim, res
 
 
+def test_coasting_conveyor_runs_at_din_22101s_resistance(coasting_run):
+    """F, what the drive supplies in steady running, against DIN 22101's F_U (which the
+    builder's idlers are meant to reproduce), within 6 %. Measured (roll wrap, the default
+    since session 9) 1675.8 against 1721.9 N (-2.7 %; segment rolls 1693.3, -1.7 %)."""
+    c, scene, sim, res = coasting_run
+    head = scene.pulley_index("head")
+    t = res.time
+    steady = (t > 2.0) & (t < TRIP)  # 16 s: the takeup's slow swing averages out (TRIP)
+    force = -res.drive_torque[steady, head].mean() / c.radius
+    print(f"coasting conveyor: drive force {force:.1f} N, DIN 22101 F_U {c.statics().effective:.1f} N")
+    assert force == pytest.approx(c.statics().effective, rel=0.06)
+
+
 def test_coasting_run_down_time(coasting_run):
     """Power fails at 1.5 m/s: the conveyor runs down under its running resistance F in
     t = M_eq·v/F (rigid belt; M_eq = Conveyor.moving_mass(): belt, material, turning rolls,
-    drums). F is what the drive supplied in steady running (within 6 % of DIN 22101's F_U,
-    which the builder's idlers reproduce); the speed falls linearly at F/M_eq."""
+    drums). F is what the drive supplied in steady running (its agreement with DIN 22101's
+    F_U is the test above); the speed falls linearly at F/M_eq."""
     c, scene, sim, res = coasting_run
     head = scene.pulley_index("head")
     t, v = res.time, -res.pulley_speed[:, head] * c.radius
-    steady = (t > 2.0) & (t < TRIP)  # 4 s: the belt's ringing on its rolls averages out
+    steady = (t > 2.0) & (t < TRIP)  # 16 s: the takeup's slow swing averages out (TRIP)
     force = -res.drive_torque[steady, head].mean() / c.radius
-    assert force == pytest.approx(c.statics().effective, rel=0.06)
     m_eq = c.moving_mass()
     # The belt rings on its rolls (±0.1 m/s): fit the run-down line where it is clear of
     # both ends.
@@ -84,10 +101,10 @@ def test_coasting_run_down_time(coasting_run):
     stopped = t[(t > TRIP) & (v < 0.01)][0] - TRIP
     print(f"deceleration {-slope:.4f} m/s², F/M_eq {force / m_eq:.4f} m/s²; run-down {stopped:.3f} s, "
           f"rigid belt {predicted:.3f} s")
-    # Measured: the belt decelerates 2.8 % faster than F/M_eq, and is at rest 5 % sooner
-    # (the belt's stretch is released at the trip). Not yet explained: the node model's
-    # contact losses on rolls and drums change with speed (docs/stops-takeups.md).
-    # Allowed: 5 % and 10 %.
+    # Measured (roll wrap, the default since session 9, F averaged over 2-18 s): the belt
+    # decelerates 2.0 % slower than F/M_eq (0.3907 against 0.3986 m/s²) and is at rest 1.1 %
+    # later (3.805 against 3.763 s). With F over 2-6 s the same run read 1.1 % faster and
+    # 5.4 % sooner: that F stood on the takeup's slow swing (TRIP). Allowed: 5 % and 10 %.
     assert -slope == pytest.approx(force / m_eq, rel=0.05)
     assert stopped == pytest.approx(predicted, rel=0.10)
     # At rest afterwards (the running resistance is stick-capable) and the drive has no
@@ -281,20 +298,18 @@ def test_deceleration_brake_on_a_decline(braked_decline):
     assert np.all(res.brake_torque[rest, head] <= cap)
 
 
-@pytest.mark.xfail(strict=True, reason="open: at rest the carry rolls push the belt back by 45 N (1.2 % "
-                   "of the material's pull; the discrete belt's roll cogging, docs/stops-takeups.md), which "
-                   "nodal contact's drum polygon steps (96 N the other way) used to offset; roll wrap contact "
-                   "removes it (next test)")
 def test_brake_holds_the_materials_pull_on_a_decline(braked_decline):
     """Holding: the material's pull on the drum, r·|m'_L·g·ΔH|, averaged over the belt's
-    ringing (7 s from 9 s); within one element of material rise and 1 %. Measured 1185.5
-    against 1203.6 N·m (−1.5 %; with nodal contact and the straight placement 1208.5, +0.4 %,
-    from two errors that cancelled). The budget of the mean rest state (tensions and node
-    positions averaged over the same 7 s; docs/stops-takeups.md): the brake carries the
-    weight along the loop, 3800 N (the zone's ends on nodes: −21 N against the 3821 N
-    pull), less a push of the carry rolls along the belt against the travel, 45 N, each
-    roll's share following the phase of its element, ∝ (1 − 2γ); the tail drum's wrap
-    pushes along the belt by 0.4 N (nodal contact: 57 N, its polygon step)."""
+    ringing (7 s from 9 s); within one element of material rise and 1 %. Measured at the
+    builders' default roll wrap contact (session 9): 1188.9 against 1203.6 N·m (−1.2 %).
+    Before, with the segment contact on the rolls, 1185.5 (−1.5 %, a strict xfail; with nodal
+    contact and the straight placement 1208.5, +0.4 %, from two errors that cancelled). The
+    budget of that segment-contact rest state (tensions and node positions averaged over the
+    same 7 s; docs/stops-takeups.md): the brake carries the weight along the loop, 3800 N
+    (the zone's ends on nodes: −21 N against the 3821 N pull), less a push of the carry rolls
+    along the belt against the travel, 45 N, each roll's share following the phase of its
+    element, ∝ (1 − 2γ) (the rolls' chordal action, which roll wrap removes); the tail
+    drum's wrap pushes along the belt by 0.4 N (nodal contact: 57 N, its polygon step)."""
     c, scene, sim, res = braked_decline
     head = scene.pulley_index("head")
     t = res.time
@@ -307,14 +322,17 @@ def test_brake_holds_the_materials_pull_on_a_decline(braked_decline):
 
 
 def test_rolls_measured_along_the_belt_remove_the_decline_push():
-    """The strict xfail above is the idler rolls' chordal action: a straight element over a
-    roll (``idler_contact = "segment"``) pushes the belt along itself by R(R − w)(1 − 2γ)/(2T)
+    """The segment contact's miss above (a strict xfail until roll wrap became the builders'
+    default) is the idler rolls' chordal action: a straight element over a roll
+    (``idler_contact = "segment"``) pushes the belt along itself by R(R − w)(1 − 2γ)/(2T)
     (docs/stops-takeups.md). Measuring the elements over a roll along the belt's path over it
-    (``idler_contact = "wrap"``, rust/src/contact/roll_wrap.rs) puts the roll's load through
-    its centre at every node phase, and the same conveyor at the builder's own element count
-    holds the material's pull within the same tolerance as above (measured 1191.7 against
-    1203.6 N·m, −1.0 %; with segment contact −1.5 % at twice the elements). The residual is
-    under the tolerance's one element of material rise (17.7 N·m here) plus 1 %."""
+    (``idler_contact = "wrap"``, rust/src/contact/roll_wrap.rs, set here by hand as the
+    default is) puts the roll's load through its centre at every node phase, and the same
+    conveyor at the builder's own element count holds the material's pull within the same
+    tolerance as above (measured 1186.1 against 1203.6 N·m, −1.5 %, with the spread circle
+    of session 9; 1191.7, −1.0 %, in session 8; with segment contact −1.5 % at twice the
+    elements). The residual is under the tolerance's one element of material rise
+    (17.7 N·m here) plus 1 %."""
     c = Conveyor(profile=[(0.0, RISE), (SPAN, 0.0)], belt="EP630/4", capacity=400.0, speed=1.5, f=0.0,
                  drives=[DriveSpec("head", start_curve=StartCurve("harrison", speed=1.5, ramp=1.0, start=1.0))],
                  stop=StopSpec(time=3.0, brake="head", deceleration=0.3))
@@ -329,6 +347,7 @@ def test_rolls_measured_along_the_belt_remove_the_decline_push():
     want = c.radius * abs(c.material_lift())
     le = sim.path_length / sim.nodes
     tol = c.radius * c.material_mass * G * le * RISE / SPAN + 0.01 * want
+    print(f"decline, builder's elements: holding {held:.1f} N·m, material's pull {want:.1f} N·m")
     assert held == pytest.approx(want, abs=tol)
 
 

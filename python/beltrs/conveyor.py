@@ -702,9 +702,12 @@ class Conveyor:
         Pulleys, in belt order: "tail", "head". The belt is placed along the profile (its
         straights and vertical curves, the return strand a drum diameter below) through
         ``scene.initial.path``, stretched to the design tensions, its spans on the rolls in
-        their static sag (``scene.initial.sag``). The node belt meets the drums with wrap
-        contact (``belt.pulley_contact = "wrap"``: no chordal ripple on a held drum,
-        ``docs/wrap-contact.md``); the rigid-body belt with nodal contact.
+        their static sag (``scene.initial.sag``). The node belt meets the drums and the
+        rolls with wrap contact (``belt.pulley_contact = "wrap"``, ``belt.idler_contact =
+        "wrap"``: no chordal ripple on a held drum, no chordal action of the rolls,
+        ``docs/wrap-contact.md``; about 1.5x the wall time of the segment contact on the
+        rolls); the rigid-body belt with nodal contact on the drums and the segment contact
+        on the rolls.
 
         Args:
             elements: belt elements; overrides the chosen element length. Default None.
@@ -771,12 +774,13 @@ class Conveyor:
             end = prof.point(prof.length if self.discharge is None else self.discharge)[0]
             loads.append(Load(mass_per_length=ml, start=_round(start), end=_round(end)))
         path = 2 * prof.length + 2 * math.pi * r  # near enough for the element count
-        from .scenes import conveyor_contact
+        from .scenes import conveyor_contact, conveyor_idler_contact
 
         belt = Belt(axial_stiffness=bc.axial_stiffness(self.width), mass_per_length=mg,
                     bending_stiffness=20.0 * self.width, damping_ratio=self.damping_ratio,
                     elements=elements if elements is not None else math.ceil(path / le),
-                    formulation=self.formulation, pulley_contact=conveyor_contact(self.formulation))
+                    formulation=self.formulation, pulley_contact=conveyor_contact(self.formulation),
+                    idler_contact=conveyor_idler_contact(self.formulation))
         longest = max((self._curve(d).end for d in self.drives), default=0.0)
         if duration is None:
             duration = 5.0 if running else longest + 5.0

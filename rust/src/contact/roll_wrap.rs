@@ -32,6 +32,34 @@ use nalgebra::Vector2;
 
 type V2 = Vector2<f64>;
 
+/// Radius of the circle the wrap contact measures the belt's path over, in element rest
+/// lengths: [`wrap_radius`].
+pub const ARC_SPREAD: f64 = 3.0;
+
+/// Radius (m) of the circle the belt's path over a roll of `radius` (m) is measured on, for
+/// elements of rest length `element` (m): `max(radius, ARC_SPREAD·element)`, the circle's
+/// top the roll's top (`contact::stage`; the sag placement bends the spans over the same
+/// circle, `model::sag`).
+///
+/// Why: a lumped node cannot follow a roll's own arc (R·θ, about 2 mm on a 0.0665 m roll)
+/// at speed. On the arc the element's path tension has no component towards the roll (the
+/// path's gradient is its tangent), so nothing gives the node the m·v²/R it needs there
+/// (1.2 kN at 2 m/s); it flies over the arc by h ≈ m²v⁴/(8T²R) and the roll unloads at each
+/// node passing, the worse the lower the tension (a 50 m builder conveyor: rms of the
+/// drive torque above 2 Hz 1414 N·m against 1164 with the segment contact). Over a circle of
+/// a few element lengths the needed force and the flight fall by R_w/R (9.4 on builder
+/// rolls at 0.21 m elements) and the arc lasts that much longer. Measured on that conveyor
+/// (`benches/ripple_drive.py base --roll-wrap --length 50`, the circle 1, 2, 3, 5, 10
+/// elements): rms 1340, 738, 284, 343, 557 N·m; 3 is the best, and on the 300 m
+/// conveyor it changes nothing (139 against 131 N·m). The cost of the larger circle: the
+/// belt's path over it lies (R_w − R)·(1/cos(θ/2) − 1) ≈ (R_w − R)·θ²/8 below the path over
+/// the roll (0.45 mm at θ = 0.08, a 7 % deeper sag at the roll on a 1.2 m pitch) and is
+/// shorter by (R_w − R)·θ³/12 per roll (24 µm), the placement and the contact measuring the
+/// same circle. With finer elements the circle shrinks to the roll.
+pub fn wrap_radius(radius: f64, element: f64) -> f64 {
+    radius.max(ARC_SPREAD * element)
+}
+
 /// Wrap contact with one roll. `element` is the roll's tracked element (updated as for the
 /// segment contact, [`super::idler_contact`]); `claimed[e] == stamp` marks an element already
 /// measured along a wrapped path this evaluation (it gets the segment contact here), and the

@@ -136,7 +136,9 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
         }
     }
     for (k, d) in m.idlers.iter().enumerate() {
-        let body = idler_body(d, cx.contact_scale, effects);
+        let mut body = idler_body(d, cx.contact_scale, effects);
+        body.center -= d.up * (d.wrap_radius - d.radius);
+        body.radius = d.wrap_radius;
         sc.idler_contacts[k] = super::roll_wrap::idler_wrap_contact(
             &mut s.idler_element[k],
             &s.position,

@@ -316,6 +316,19 @@ pub(crate) fn next_at_chord_on(point: impl Fn(f64) -> Vector2<f64>, s0: f64, cho
     illinois(lo, glo, hi, ghi, tolerance, 40, gap)
 }
 
+/// The parameter s > `s0` at which `length(s)` (a length from the point at `s0` to the
+/// point at s, increasing in s, `length(s0 + chord) >= chord` on a path no shorter than
+/// its chords) equals `chord`: [`next_at_chord_on`] for a length other than the chord's.
+pub(crate) fn next_at_length(length: impl Fn(f64) -> f64, s0: f64, chord: f64) -> f64 {
+    let gap = |s: f64| length(s) - chord;
+    let (lo, glo, hi, ghi) = chord_bracket(s0, chord, &gap);
+    if ghi < 0.0 {
+        return hi;
+    }
+    let tolerance = 8.0 * f64::EPSILON * (s0.abs() + chord);
+    illinois(lo, glo, hi, ghi, tolerance, 40, gap)
+}
+
 /// Work units ([`crate::interrupt::check`]) of placing one node: about 10 path evaluations.
 const WORK_PER_NODE: u64 = 64;
 

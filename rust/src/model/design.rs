@@ -345,6 +345,41 @@ pub(super) fn place(
         let s = s.rem_euclid(length);
         wraps.iter().find(|w| s >= w.from && s <= w.to)
     };
+    // The belt's runs round the pulleys for the walk, (from, to) in arc length: the wraps
+    // of one pulley that the path splits (at a corner placed on the drum, or at node 0)
+    // joined, the run through node 0 ending past the path length.
+    let mut runs: Vec<(f64, f64, usize)> = Vec::new();
+    for w in &wraps {
+        match runs.last_mut() {
+            Some(r) if r.2 == w.pulley && (w.from - r.1).abs() <= 1e-9 * length => r.1 = w.to,
+            _ => runs.push((w.from, w.to, w.pulley)),
+        }
+    }
+    if runs.len() > 1 {
+        let (first, last) = (runs[0], runs[runs.len() - 1]);
+        if first.2 == last.2 && first.0 <= 1e-9 * length && (length - last.1) <= 1e-9 * length {
+            runs.pop();
+            runs[0] = (last.0 - length, first.1, first.2);
+        }
+    }
+    // The run holding arc length s, as (from, to) unwrapped round s.
+    let run_at = |s: f64| {
+        let base = s - s.rem_euclid(length);
+        [base - length, base, base + length]
+            .iter()
+            .flat_map(|&b| runs.iter().map(move |r| (b + r.0, b + r.1)))
+            .find(|&(from, to)| s >= from && s <= to)
+    };
+    // The start (unwrapped: arc length from node 0, possibly past the path length) of
+    // the first run beginning in (s, s + reach].
+    let wrap_ahead = |s: f64, reach: f64| {
+        let base = s - s.rem_euclid(length);
+        [base, base + length]
+            .iter()
+            .flat_map(|&b| runs.iter().map(move |r| b + r.0))
+            .filter(|&from| from > s && from <= s + reach)
+            .min_by(f64::total_cmp)
+    };
     for w in &wraps {
         let t = init.tension_at(0.5 * (w.from + w.to), length);
         let l0 = rest / n as f64;
@@ -412,12 +447,42 @@ pub(super) fn place(
             } else {
                 None
             };
-            let to_kink = kink.map(|k| (k, (point(k) - point(s)).norm()));
-            s = if wrap_contact && (wrap_at(s).is_some() || wrap_at(s + chord).is_some()) {
-                s + chord // the wrapped length is the path's length there
-            } else if let Some((k, d)) = to_kink.filter(|&(_, d)| d < chord) {
-                // over a roll: the two pieces to and from the kink
-                crate::geometry::next_at_chord_on(point, k, chord - d)
+            let to_kink = kink.map(|k| (k, (point(k.s) - point(s)).norm()));
+            // With wrap contact an element on a drum is as long as its path there: along
+            // the arc, and from the wrap's ends straight (the sag shape's chord) to a node
+            // on a line. Measured piecewise so that the walk is continuous in l⁰ where a
+            // node crosses a tangent point: taking the whole element along the path's
+            // arc length as soon as its end reached the wrap skipped the sagged line's
+            // excess length (chord − Δs, up to 7e-5 m per element), a jump that kept the
+            // secant from closing (a 137.5 m builder conveyor with roll wrap: closure gap
+            // 9.9 µm).
+            let wrapped = if wrap_contact {
+                match run_at(s) {
+                    Some((_, end)) => Some(if s + chord <= end {
+                        s + chord
+                    } else {
+                        crate::geometry::next_at_chord_on(point, end, chord - (end - s))
+                    }),
+                    None => wrap_ahead(s, 1.01 * chord).and_then(|from| {
+                        let d = (point(from) - point(s)).norm();
+                        (d < chord).then_some(from + chord - d)
+                    }),
+                }
+            } else {
+                None
+            };
+            s = if let Some(next) = wrapped {
+                next
+            } else if let Some((k, _)) = to_kink.filter(|&(_, d)| d < chord) {
+                // over a roll: measured along the belt's path over the wrap contact's
+                // circle there (tangent, arc, tangent), as the contact measures it
+                let p = point(s);
+                let over = |t: f64| {
+                    let q = point(t);
+                    crate::contact::wrap::wrap(p, q, k.center, k.radius)
+                        .map_or_else(|| (q - p).norm(), |g| g.length)
+                };
+                crate::geometry::next_at_length(over, s, chord)
             } else {
                 crate::geometry::next_at_chord_on(point, s, chord)
             };
@@ -535,7 +600,7 @@ pub(super) fn place(
                 &at,
                 &mass,
                 |s| init.tension_at(s, length),
-                roll_wrap,
+                roll_wrap.then_some(l0),
                 rigid,
             );
             *sag.borrow_mut() = shape;

@@ -22,6 +22,12 @@ pub struct IdlerModel {
     pub resistance: f64,
     /// Rotating mass of the roll, kg (its weight adds to the bearing load).
     pub rotating_mass: f64,
+    /// Unit direction from the centre to the belt's path (set by the model from the
+    /// placement path; (0, 1) until then).
+    pub up: Vector2<f64>,
+    /// Radius of the circle wrap contact measures the belt's path over
+    /// ([`crate::contact::roll_wrap::wrap_radius`]), m; its top is the roll's top.
+    pub wrap_radius: f64,
 }
 
 /// Compile the scene's idlers for elements of rest length `l0` (m) (a contact damping
@@ -45,6 +51,8 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<IdlerModel> {
             friction: d.friction,
             resistance: d.resistance,
             rotating_mass: d.rotating_mass,
+            up: Vector2::new(0.0, 1.0),
+            wrap_radius: crate::contact::roll_wrap::wrap_radius(d.radius, l0),
         })
         .collect()
 }

@@ -234,7 +234,13 @@ impl Model {
             }
         };
         let mut pulleys = pulleys::compile(scene, belt.element_length);
-        let idlers = idlers::compile(scene, belt.element_length);
+        let mut idlers = idlers::compile(scene, belt.element_length);
+        for d in &mut idlers {
+            let (at, dist) = crate::loads::project_on_path(on, d.center);
+            if dist > 0.0 {
+                d.up = (on.point(at) - d.center) / dist;
+            }
+        }
         let loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
         if scene.pulleys.iter().any(|p| {
             p.drive

@@ -34,9 +34,19 @@ type V2 = Vector2<f64>;
 #[derive(Debug, Clone, Default)]
 pub(super) struct SagShape {
     lines: Vec<SagLine>,
-    /// Arc lengths (increasing) of the kinks on the rolls (`kinked` placement): the belt's
-    /// path bends there, over the roll, not at the nodes.
-    kinks: Vec<f64>,
+    /// The kinks on the rolls (`kinked` placement), in increasing arc length: the belt's
+    /// path bends there, over the roll, not at the nodes. Each: its arc length, and the
+    /// circle the wrap contact measures the belt's path over there (centre, radius, m).
+    kinks: Vec<Kink>,
+}
+
+/// A kink of the sag shape on a roll: its arc length `s`, and the wrap contact's circle
+/// there (`center`, `radius`, m: [`crate::contact::roll_wrap::wrap_radius`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Kink {
+    pub s: f64,
+    pub center: V2,
+    pub radius: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -50,9 +60,9 @@ struct SagLine {
 impl SagShape {
     /// The first kink on a roll at arc length in (s0, s1], if any (no wrap round the path's
     /// end: the lines do not cross node 0's arc length).
-    pub fn kink_in(&self, s0: f64, s1: f64) -> Option<f64> {
-        let k = self.kinks.partition_point(|&s| s <= s0);
-        self.kinks.get(k).copied().filter(|&s| s <= s1)
+    pub fn kink_in(&self, s0: f64, s1: f64) -> Option<Kink> {
+        let k = self.kinks.partition_point(|k| k.s <= s0);
+        self.kinks.get(k).copied().filter(|k| k.s <= s1)
     }
 
     /// The placement point at arc length `s` (modulo the path length): the path's point
@@ -75,7 +85,8 @@ impl SagShape {
     }
 }
 
-/// A roll under a line: abscissa on the line (m), top's offset (m), stiffness (N/m).
+/// A roll under a line: abscissa on the line (m), top's offset (m), radius (m: with
+/// `kinked`, the wrap contact's circle's, its top the roll's), stiffness (N/m).
 struct Roll {
     x: f64,
     top: f64,
@@ -85,11 +96,14 @@ struct Roll {
 
 /// The sag of every straight line of `path` that rests on rolls, for nodes at arc lengths
 /// `at` (increasing from node 0, below the path length) of masses `mass` (kg), with the
-/// design tension `tension(s)` (N) at arc length s. `kinked`: the belt bends over each
-/// roll at the roll (wrap contact on the rolls, `contact::roll_wrap`): the element over a
+/// design tension `tension(s)` (N) at arc length s. `kinked` = Some(l), for elements of
+/// l m: the belt bends over each roll at the roll (wrap contact on the rolls, `contact::roll_wrap`): the element over a
 /// roll is its two straight pieces from its nodes to the roll's top, the roll a support
 /// (its reaction the tension times the slope change there), instead of a penalty spring
-/// on the element's chord.
+/// on the element's chord; the kink is where the belt's straight pieces meet when they are
+/// tangent to the wrap contact's circle over the roll (radius
+/// [`crate::contact::roll_wrap::wrap_radius`] for elements of l m), so that an
+/// element measured over the circle is as long as its pieces less the arc's shortcut.
 ///
 /// `centres`: the points are the rigid-body belt's joint points (`super::design_rigid`),
 /// each body the straight chord between two of them, its mass centre at the chord's middle.
@@ -106,10 +120,13 @@ pub(super) fn shape(
     at: &[f64],
     mass: &[f64],
     tension: impl Fn(f64) -> f64,
-    kinked: bool,
+    kinked: Option<f64>,
     centres: bool,
 ) -> SagShape {
-    let kinked = kinked && !centres;
+    let (kinked, element) = match kinked {
+        Some(l) if !centres => (true, l),
+        _ => (false, 0.0),
+    };
     let n = at.len();
     let g = scene.gravity;
     let mut lines = Vec::new();
@@ -146,7 +163,11 @@ pub(super) fn shape(
                     Roll {
                         x,
                         top,
-                        radius: r.radius,
+                        radius: if kinked {
+                            crate::contact::roll_wrap::wrap_radius(r.radius, element)
+                        } else {
+                            r.radius
+                        },
                         stiffness: r.contact_stiffness,
                     },
                 )
@@ -156,24 +177,27 @@ pub(super) fn shape(
             continue;
         }
         // The nodes on the line, in order (node order may run either way along it and
-        // wrap round node 0).
+        // wrap round node 0). A node within `end` of one of the line's ends is on that end
+        // (offset 0), not an unknown: at rest under one tension with an even number of
+        // elements a node falls on the tangent point to rounding (at − from = len), and
+        // its element of zero length made the system singular (NaN offsets, a walk at half
+        // steps, a closure gap of 0.16 m on a 112 m builder conveyor at rest).
         let to = from + len;
-        let first = match (0..n).find(|&i| at[i] > from && at[i] < to) {
+        let end = 1e-9 * len.max(1.0);
+        let on_line = |s: f64| s > from + end && s < to - end;
+        let first = match (0..n).find(|&i| on_line(at[i])) {
             Some(i) => i,
             None => continue,
         };
-        let first = if first == 0 && at[n - 1] > from && at[n - 1] < to {
+        let first = if first == 0 && on_line(at[n - 1]) {
             // the run wraps round node 0: start after the last node off the line
-            (0..n)
-                .rev()
-                .find(|&i| !(at[i] > from && at[i] < to))
-                .map_or(0, |i| i + 1)
+            (0..n).rev().find(|&i| !on_line(at[i])).map_or(0, |i| i + 1)
         } else {
             first
         };
         let mut idx = Vec::new();
         let mut i = first;
-        while idx.len() < n && at[i % n] > from && at[i % n] < to {
+        while idx.len() < n && on_line(at[i % n]) {
             idx.push(i % n);
             i += 1;
         }
@@ -203,6 +227,12 @@ pub(super) fn shape(
         // touches when its foot lies R·(1 − cos φ) below the top (29 µm on a 0.1 m roll
         // at φ = 0.024, eight times the penetration that carries the span).
         let mut slope = vec![0.0; rolls.len()];
+        // Kinked: the belt's turn over each roll (from the last solve). Its straight pieces,
+        // tangent to the circle, meet ρ = R/cos(θ/2) from the centre, R·(1/cos(θ/2) − 1)
+        // above the circle (R·θ²/8: 0.2 µm on a 0.0665 m roll at θ = 0.035, 53 µm at
+        // θ = 0.08 on a 0.2 m circle; taking the circle's top instead started nodes that
+        // deep inside it).
+        let mut bend = vec![0.0; rolls.len()];
         let mut y = vec![0.0; m + 2];
         // The points the rolls touch the chords between: the nodes (with the line's ends),
         // or with `centres` the bodies' mass centres, the middles of the points' chords.
@@ -232,26 +262,32 @@ pub(super) fn shape(
         };
         // The element (the centres' chord) under the foot of roll k and the foot's share γ
         // along it.
-        let place = |r: &Roll, phi: f64| {
+        let place = |r: &Roll, phi: f64, theta: f64| {
             let (sin, cos) = (phi.atan().sin(), phi.atan().cos());
-            let foot = r.x - r.radius * sin;
+            let rho = r.radius / (0.5 * theta).cos();
+            let foot = r.x - rho * sin;
             let e = cx.partition_point(|&x| x <= foot).clamp(1, cx.len() - 1) - 1;
             let gamma = ((foot - cx[e]) / (cx[e + 1] - cx[e])).clamp(0.0, 1.0);
-            (e, gamma, r.top - r.radius * (1.0 - cos))
+            (
+                e,
+                gamma,
+                r.top - r.radius * (1.0 - cos) + (rho - r.radius) * cos,
+            )
         };
         // Kinked: the roll (by index) bending element e, and the kink (abscissa, offset).
-        let kink_of = |active: &[bool], slope: &[f64]| -> Vec<Option<(usize, f64, f64)>> {
-            let mut kink = vec![None; m + 1];
-            if kinked {
-                for (k, r) in rolls.iter().enumerate().filter(|&(k, _)| active[k]) {
-                    let (e, gamma, top) = place(r, slope[k]);
-                    if kink[e].is_none() {
-                        kink[e] = Some((k, xs[e] + gamma * (xs[e + 1] - xs[e]), top));
+        let kink_of =
+            |active: &[bool], slope: &[f64], bend: &[f64]| -> Vec<Option<(usize, f64, f64)>> {
+                let mut kink = vec![None; m + 1];
+                if kinked {
+                    for (k, r) in rolls.iter().enumerate().filter(|&(k, _)| active[k]) {
+                        let (e, gamma, top) = place(r, slope[k], bend[k]);
+                        if kink[e].is_none() {
+                            kink[e] = Some((k, xs[e] + gamma * (xs[e + 1] - xs[e]), top));
+                        }
                     }
                 }
-            }
-            kink
-        };
+                kink
+            };
         // The piece of element e from node e (`left`) or to node e + 1 to its kink:
         // (its horizontal length, the kink's offset), or None (no kink).
         let piece = |kink: &[Option<(usize, f64, f64)>], e: usize, left: bool| {
@@ -260,7 +296,7 @@ pub(super) fn shape(
                 (dx.max(1e-9 * (xs[e + 1] - xs[e])), yk)
             })
         };
-        let mut kink = kink_of(&active, &slope);
+        let mut kink = kink_of(&active, &slope, &bend);
         for _ in 0..16 {
             // unknowns y[1..=m]; rows j = 1..=m
             let mut lo = vec![0.0; m + 2];
@@ -301,7 +337,7 @@ pub(super) fn shape(
                 .enumerate()
                 .filter(|&(k, _)| active[k])
             {
-                let (e, gamma, top) = place(r, phi);
+                let (e, gamma, top) = place(r, phi, 0.0);
                 if kink[e].is_some_and(|(kk, _, _)| kk == k) {
                     continue; // a support, in the rows above
                 }
@@ -336,13 +372,34 @@ pub(super) fn shape(
                 .fold(0.0, f64::max);
             y = next;
             let mut changed = false;
-            for (k, ((r, on), phi)) in rolls
+            for (k, (((r, on), phi), theta)) in rolls
                 .iter()
                 .zip(active.iter_mut())
                 .zip(slope.iter_mut())
+                .zip(bend.iter_mut())
                 .enumerate()
             {
-                let (e, gamma, top) = place(r, *phi);
+                let (e, gamma, top) = place(r, *phi, *theta);
+                // A kink: the pieces' turn θ, and their bisector's slope, along which the
+                // kink lies from the circle's centre (the element's chord slope would put
+                // it off the bisector, one piece cutting into the circle: 0.8 mm into a
+                // 0.63 m circle at θ = 0.08, an 80 kN kick per roll).
+                // Each piece's slope read to its node, or to the next one out where the kink
+                // lies within 10⁻³ of an element of it (a slope over a piece of micrometres
+                // is rounding, and once threw the kink metres off; reading every piece under
+                // a quarter element to the next node started a roll at 30 kN).
+                let bisector = kink[e].filter(|&(kk, _, _)| kk == k).map(|(_, xk, yk)| {
+                    let near = 1e-3 * (xs[e + 1] - xs[e]);
+                    let a = if xk - xs[e] < near && e > 0 { e - 1 } else { e };
+                    let b = if xs[e + 1] - xk < near && e + 1 < m + 1 {
+                        e + 2
+                    } else {
+                        e + 1
+                    };
+                    let left = ((yk - y[a]) / (xk - xs[a]).max(1e-12)).atan();
+                    let right = ((y[b] - yk) / (xs[b] - xk).max(1e-12)).atan();
+                    ((left - right).clamp(0.0, 0.5), (0.5 * (left + right)).tan())
+                });
                 let pull = match kink[e] {
                     // A support pulls where the belt bends down over it (its reaction,
                     // the tension times the slope change, is negative).
@@ -356,9 +413,12 @@ pub(super) fn shape(
                     *on = false;
                     changed = true;
                 }
-                *phi = (point_y(&y, e + 1) - point_y(&y, e)) / (cx[e + 1] - cx[e]);
+                match bisector {
+                    Some((turn, slope)) => (*theta, *phi) = (turn, slope),
+                    None => *phi = (point_y(&y, e + 1) - point_y(&y, e)) / (cx[e + 1] - cx[e]),
+                }
             }
-            let next_kink = kink_of(&active, &slope);
+            let next_kink = kink_of(&active, &slope, &bend);
             let kink_moved = next_kink.iter().zip(&kink).any(|(a, b)| match (a, b) {
                 (Some(a), Some(b)) => {
                     a.0 != b.0 || (a.1 - b.1).abs() > 1e-9 || (a.2 - b.2).abs() > 1e-10
@@ -374,16 +434,31 @@ pub(super) fn shape(
         }
         let mut knots = Vec::with_capacity(m + 2);
         knots.push((from, 0.0));
-        if let Some((_, xk, yk)) = kink[0] {
+        // The wrap contact's circle under roll k: its top the roll's.
+        let circle = |k: usize| {
+            let r = &rolls[k];
+            (a + d * r.x + normal * (r.top - r.radius), r.radius)
+        };
+        if let Some((k, xk, yk)) = kink[0] {
             knots.push((from + xk.max(0.0), yk));
-            kinks.push(from + xk.max(0.0));
+            let (center, radius) = circle(k);
+            kinks.push(Kink {
+                s: from + xk.max(0.0),
+                center,
+                radius,
+            });
         }
         for j in 1..=m {
             knots.push((from + xs[j], y[j]));
-            if let Some((_, xk, yk)) = kink[j] {
+            if let Some((k, xk, yk)) = kink[j] {
                 let xk = xk.min(len);
                 knots.push((from + xk, yk));
-                kinks.push(from + xk);
+                let (center, radius) = circle(k);
+                kinks.push(Kink {
+                    s: from + xk,
+                    center,
+                    radius,
+                });
             }
         }
         knots.push((to, 0.0));
@@ -394,7 +469,7 @@ pub(super) fn shape(
             knots,
         });
     }
-    kinks.sort_by(f64::total_cmp);
+    kinks.sort_by(|a, b| a.s.total_cmp(&b.s));
     SagShape { lines, kinks }
 }
 
