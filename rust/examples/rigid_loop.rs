@@ -70,11 +70,7 @@ fn main() {
     walls.sort_by(f64::total_cmp);
     per_step.sort_by(f64::total_cmp);
     let fingerprint = common::fingerprint(
-        sim.state
-            .position
-            .iter()
-            .chain(&sim.state.velocity)
-            .flat_map(|p| [p.x, p.y])
+        common::node_values(&sim)
             .chain(sim.state.body_angle.iter().copied())
             .chain(sim.state.body_spin.iter().copied())
             .chain(sim.state.pulley_omega.iter().copied())

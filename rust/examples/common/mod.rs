@@ -15,6 +15,15 @@ pub fn fingerprint(values: impl Iterator<Item = f64>) -> u64 {
     })
 }
 
+/// The node belt's state as values for [`fingerprint`]: positions, then velocities (x, y).
+pub fn node_values(sim: &Simulation) -> impl Iterator<Item = f64> + '_ {
+    sim.state
+        .position
+        .iter()
+        .chain(&sim.state.velocity)
+        .flat_map(|p| [p.x, p.y])
+}
+
 /// Steps `sim` `steps` more with the stage profiler on and prints each stage's time and
 /// what lies outside the stages, in ns per `unit` (e.g. "node-step"): the wall divided by
 /// `count` (points × steps).
