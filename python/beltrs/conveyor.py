@@ -705,7 +705,7 @@ class Conveyor:
         their static sag (``scene.initial.sag``). The node belt meets the drums and the
         rolls with wrap contact (``belt.pulley_contact = "wrap"``, ``belt.idler_contact =
         "wrap"``: no chordal ripple on a held drum, no chordal action of the rolls,
-        ``docs/wrap-contact.md``; about 1.5x the wall time of the segment contact on the
+        ``docs/wrap-contact.md``; 1.6-1.8x the wall time of the segment contact on the
         rolls); the rigid-body belt with nodal contact on the drums and the segment contact
         on the rolls.
 

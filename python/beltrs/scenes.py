@@ -65,7 +65,7 @@ def conveyor_idler_contact(formulation: str) -> str:
     over it: no chordal action of the rolls at the node-passing frequency, and no push of
     the rolls on a held belt; docs/wrap-contact.md, "Roll wrap as the builders' default"),
     ``"segment"`` for the rigid-body belt (the engine refuses roll wrap with it). Costs
-    about 1.5x the wall time of the segment contact."""
+    1.6-1.8x the wall time of the segment contact (``benches/roll_wrap_cost.py``)."""
     return "segment" if formulation == "rigid_body" else "wrap"
 
 
