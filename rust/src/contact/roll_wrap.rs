@@ -126,8 +126,9 @@ pub fn idler_wrap_contact(
             force,
         );
         tension[k] = t;
+        let chord = (x[j] - x[k]).norm();
         if let Some(excess) = excess.as_deref_mut() {
-            excess.push((k, g.length - (x[j] - x[k]).norm()));
+            excess.push((k, g.length - chord));
         }
         // The roll's contact damping on a node moving towards the roll across its tangent
         // line (never pulling): zero in steady running, where the nodes move along the path.
@@ -151,7 +152,6 @@ pub fn idler_wrap_contact(
         let w = on_roll.norm();
         weight += w;
         moment += w * (off as f64 + g.share_q);
-        let chord = (x[j] - x[k]).norm();
         out.strain += law.energy(k, g.length) - law.energy(k, chord);
     }
     // Nodes pressed into the roll: the penalty keeps them out.

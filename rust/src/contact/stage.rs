@@ -137,7 +137,7 @@ fn idler_wrap_contact(cx: &mut StageContext<'_>) {
     }
     for (k, d) in m.idlers.iter().enumerate() {
         let mut body = idler_body(d, cx.contact_scale, effects);
-        body.center -= d.up * (d.wrap_radius - d.radius);
+        body.center = d.wrap_center;
         body.radius = d.wrap_radius;
         sc.idler_contacts[k] = super::roll_wrap::idler_wrap_contact(
             &mut s.idler_element[k],

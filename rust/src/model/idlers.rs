@@ -22,12 +22,13 @@ pub struct IdlerModel {
     pub resistance: f64,
     /// Rotating mass of the roll, kg (its weight adds to the bearing load).
     pub rotating_mass: f64,
-    /// Unit direction from the centre to the belt's path (set by the model from the
-    /// placement path; (0, 1) until then).
-    pub up: Vector2<f64>,
     /// Radius of the circle wrap contact measures the belt's path over
     /// ([`crate::contact::roll_wrap::wrap_radius`]), m; its top is the roll's top.
     pub wrap_radius: f64,
+    /// Centre of that circle, m: the roll's centre moved away from the belt's path by
+    /// `wrap_radius − radius` (set by the model from the placement path; straight down
+    /// until then), so that the circle's top is the roll's.
+    pub wrap_center: Vector2<f64>,
 }
 
 /// Compile the scene's idlers for elements of rest length `l0` (m) (a contact damping
@@ -37,22 +38,25 @@ pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<IdlerModel> {
     scene
         .idlers
         .iter()
-        .map(|d| IdlerModel {
-            center: Vector2::new(d.center[0], d.center[1]),
-            radius: d.radius,
-            inertia: d.inertia,
-            contact_stiffness: d.contact_stiffness,
-            contact_damping: crate::scene::contact_damping(
-                d.contact_damping,
-                d.contact_damping_ratio,
-                d.contact_stiffness,
-                element_mass,
-            ),
-            friction: d.friction,
-            resistance: d.resistance,
-            rotating_mass: d.rotating_mass,
-            up: Vector2::new(0.0, 1.0),
-            wrap_radius: crate::contact::roll_wrap::wrap_radius(d.radius, l0),
+        .map(|d| {
+            let wrap_radius = crate::contact::roll_wrap::wrap_radius(d.radius, l0);
+            IdlerModel {
+                center: Vector2::new(d.center[0], d.center[1]),
+                radius: d.radius,
+                inertia: d.inertia,
+                contact_stiffness: d.contact_stiffness,
+                contact_damping: crate::scene::contact_damping(
+                    d.contact_damping,
+                    d.contact_damping_ratio,
+                    d.contact_stiffness,
+                    element_mass,
+                ),
+                friction: d.friction,
+                resistance: d.resistance,
+                rotating_mass: d.rotating_mass,
+                wrap_radius,
+                wrap_center: Vector2::new(d.center[0], d.center[1] - (wrap_radius - d.radius)),
+            }
         })
         .collect()
 }

@@ -238,7 +238,8 @@ impl Model {
         for d in &mut idlers {
             let (at, dist) = crate::loads::project_on_path(on, d.center);
             if dist > 0.0 {
-                d.up = (on.point(at) - d.center) / dist;
+                let up = (on.point(at) - d.center) / dist;
+                d.wrap_center = d.center - up * (d.wrap_radius - d.radius);
             }
         }
         let loads = crate::loads::compile(&scene.loads, on, belt.element_length)?;
