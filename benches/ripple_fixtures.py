@@ -19,6 +19,13 @@ element length and belt speed:
 
     python benches/ripple_fixtures.py case_g --steady 16 --windows 2 --spectrum 8
     python benches/ripple_fixtures.py case_g --element 0.19 --speed 1.5
+
+Steady running without the start (``--start running``: the builder's running design start,
+steady-running tensions and the belt at speed, no ramp; the figures over the last 2 s of
+``--steady`` s): session 10 at the defaults, case G 0.146 (70 % of the energy above 2 Hz in
+the 9.96 Hz cogging line) and 300 m 0.106 (drum stick-slip spikes above 80 Hz):
+
+    python benches/ripple_fixtures.py case_g --start running --steady 8 --windows 2 --spectrum 6
 """
 
 from __future__ import annotations
@@ -62,6 +69,10 @@ def main(argv=None) -> int:
     ap.add_argument("--pi", action="store_true",
                     help="a PI speed controller (beltrs.SpeedController, default gains) on the head drive instead of "
                          "the ideal speed follower")
+    ap.add_argument("--start", default="rest", choices=["rest", "running"],
+                    help="rest: the test's start (case G stabilised at rest, the 300 m from its design state at "
+                         "rest) then the ramp; running: the builder's running design start (steady-running "
+                         "tensions, belt at speed, no ramp), the --steady s at speed measured")
     ap.add_argument("--save", help="write the measured record (time, tension, torque, ...) to this .npz")
     a = ap.parse_args(argv)
 
@@ -84,11 +95,17 @@ def main(argv=None) -> int:
         length = 150.0
         curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=a.ramp)
         kw = {} if a.element is None else {"element_length": a.element}
-        sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, **kw)))
-        sim.stabilise(tolerance=1e-5, max_steps=400_000)
-        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", a.ramp + a.steady + MARGIN)
+        if a.start == "running":
+            sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, start="running", **kw)))
+        else:
+            sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, **kw)))
+            sim.stabilise(tolerance=1e-5, max_steps=400_000)
+        ramp = 0.0 if a.start == "running" else a.ramp
+        data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", ramp + a.steady + MARGIN)
     else:
         kw = {} if a.element is None else {"element_length": a.element}
+        if a.start == "running":
+            kw["start"] = "running"
         if a.speed is None:
             c = conveyor_300(ramp=a.ramp, **kw)
         else:
@@ -96,7 +113,8 @@ def main(argv=None) -> int:
                          drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=a.speed,
                                                                                  ramp=a.ramp))], **kw)
         sim = beltrs.Simulation(belt(c.scene()))
-        data = measure(sim, (290.0, 0.0), "head", a.ramp + a.steady + MARGIN)
+        ramp = 0.0 if a.start == "running" else a.ramp
+        data = measure(sim, (290.0, 0.0), "head", ramp + a.steady + MARGIN)
     f = ripple_figures(data, WINDOW, margin=MARGIN)
     if a.save:
         import numpy as np
@@ -106,7 +124,8 @@ def main(argv=None) -> int:
     f.update(which=a.which, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
              loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
-             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, ramp=a.ramp, steady=a.steady,
+             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, start=a.start, ramp=a.ramp,
+             steady=a.steady,
              element=a.element, speed=a.speed, nodes=sim.nodes)
     if a.windows:
         f.update(windows=window_figures(data["time"], data["torque"], a.windows),
