@@ -40,6 +40,13 @@ stick-slip spikes above 80 Hz (0.06-0.20). A viscoelastic belt (``belt.loss_fact
 brought them to 0.14 and 0.12 in session 8, and no published loss factor for a conveyor belt
 in tension was found to make it a default. Case G reaches 0.037 with a PI speed controller
 on the drive and 0.19 m elements, neither of them a builder default.
+
+Steady running (session 10). The figure after a 4 s start measures mostly that start's
+physical ringing, which the model damps only as much as its drive and belt do. The issue's
+target is the steady-running ripple, so it is also measured where nothing rings: from the
+builders' running design start (steady-running tensions, belt at speed, no ramp; the window
+the same 2 s, ending MARGIN s before the record). What is left there is the model's own
+ripple: the lumped weight's cogging over the rolls and the drums' stick-slip.
 """
 
 from dataclasses import replace
@@ -90,6 +97,25 @@ def conveyor():
     return ripple_figures(data, WINDOW, margin=MARGIN)
 
 
+@pytest.fixture(scope="module")
+def case_g_running():
+    # Steady running without the start: the builder's running design start (DIN 22101's
+    # steady-running tensions, belt and drums at speed; docs/design-start.md), measured over
+    # the window ending MARGIN s before the record's end.
+    length = 150.0
+    curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
+    sim = beltrs.Simulation(guo_wang_conveyor(curve, length=length, start="running"))
+    data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", STEADY + MARGIN)
+    return ripple_figures(data, WINDOW, margin=MARGIN)
+
+
+@pytest.fixture(scope="module")
+def conveyor_running():
+    sim = beltrs.Simulation(conveyor_300(ramp=RAMP, start="running").scene())
+    data = measure(sim, (290.0, 0.0), "head", STEADY + MARGIN)
+    return ripple_figures(data, WINDOW, margin=MARGIN)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("which", [
     "case_g",
@@ -104,13 +130,30 @@ def test_raw_peak_within_three_percent_of_the_low_passed_peak(which, request):
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="open: steady running from the running design start at the defaults reads "
+                   "0.084 (case G) and 0.069 (300 m) in this window (2-4 s), 0.12-0.15 and 0.08-0.13 in later "
+                   "windows: case G's 9.96 Hz gravity-cogging line (v/l, the 1.2 m pitch a whole 6 elements; 70 % "
+                   "of the energy above 2 Hz over 8 s), the 300 m's drum stick-slip spikes above 80 Hz "
+                   "(python benches/ripple_fixtures.py {case_g|conveyor} --start running [--steady 8 --windows 2], "
+                   "session 10)")
+@pytest.mark.parametrize("which", ["case_g_running", "conveyor_running"])
+def test_steady_running_drive_torque_ripple_under_five_percent(which, request):
+    """The issue's target as it reads: the drive torque in steady running, free of the
+    model's numerical ripple (the chordal action of drums and rolls, the lumped weight's
+    cogging over the rolls, the drums' stick-slip), within 5 % of its mean above 2 Hz."""
+    f = request.getfixturevalue(which)
+    assert f["torque_mean"] < 0, f
+    assert f["torque_ripple"] < 0.05, f
+
+
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="open: at the defaults (roll wrap since session 9) 0.46 (case G) and 0.29 "
                    "(300 m) of the mean: the start's ringing of the strands' modes (zeta ~ 1e-3; case G's 2.02 Hz "
                    "mode at the cut-off, the 300 m takeup swing), the lumped weight's cogging at v/l when the "
                    "pitches are whole numbers of elements (case G 10 Hz, 0.13) and drum stick-slip spikes; case G "
                    "0.037 with a PI drive and 0.19 m elements (docs/wrap-contact.md, Session 9)")
 @pytest.mark.parametrize("which", ["case_g", "conveyor"])
-def test_steady_drive_torque_ripple_under_five_percent(which, request):
+def test_drive_torque_ripple_after_a_four_second_start_under_five_percent(which, request):
     f = request.getfixturevalue(which)
     # A normal head drive: the belt runs clockwise over the drum, the torque is negative.
     assert f["torque_mean"] < 0, f
