@@ -81,16 +81,20 @@ def probe_chunks(sim: beltrs.Simulation, probes: list[tuple[float, float]], dura
 
 
 def start(shape: str, ramp: float, prestart: float, length: float, settle: float,
-          progress: Callable[[dict[str, Any]], None] | None = None, **scene_kw: Any) -> dict[str, Any]:
+          progress: Callable[[dict[str, Any]], None] | None = None, contact: str = "nodes",
+          **scene_kw: Any) -> dict[str, Any]:
     """One start from rest: build, stabilise, run the curve and ``settle`` s more.
     ``progress`` gets the run's figures so far (as returned, with ``duration`` the planned
-    time) after each half second (`probe_chunks`);
-    ``scene_kw`` go to :func:`guo_wang_conveyor`."""
+    time) after each half second (`probe_chunks`); ``contact``: "nodes" pins nodal pulley
+    contact (the tables of docs/case-g.md are the nodal contact's, session 8), "builder"
+    keeps :func:`guo_wang_conveyor`'s defaults (wrap contact on drums and rolls for the node
+    belt); ``scene_kw`` go to :func:`guo_wang_conveyor`."""
     curve = beltrs.StartCurve(shape=shape, speed=GUO_WANG["speed"], ramp=ramp, prestart=prestart)
     scene = guo_wang_conveyor(curve, length=length, **scene_kw)
-    # The tables (docs/case-g.md) are the nodal contact's: keep it against the builder's
-    # wrap default (session 8).
-    scene = replace(scene, belt=replace(scene.belt, pulley_contact="nodes"))
+    if contact == "nodes":
+        scene = replace(scene, belt=replace(scene.belt, pulley_contact="nodes"))
+    elif contact != "builder":
+        raise ValueError(f"contact must be 'nodes' or 'builder', not {contact!r}")
     t0 = time.perf_counter()
     sim = beltrs.Simulation(scene)
     rep = sim.stabilise(**STABILISE)
@@ -108,7 +112,9 @@ def start(shape: str, ramp: float, prestart: float, length: float, settle: float
                   "takeup": data["takeup_travel"][:, tail]}
         run = summarise(shape, ramp, prestart, series)
         run.update(nodes=sim.nodes, dt=sim.dt, stabilise_steps=rep["steps"], stabilise_wall=t1 - t0,
-                   run_wall=time.perf_counter() - t1, duration=duration)
+                   run_wall=time.perf_counter() - t1, duration=duration,
+                   pulley_contact=scene.belt.pulley_contact, idler_contact=scene.belt.idler_contact,
+                   element_length=scene_kw.get("element_length", 0.2))
         return run
 
     each = None if progress is None else (lambda data: progress(figures(data)))
@@ -220,6 +226,12 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--section-from", metavar="JSON", help="with --formulations: write the section from these "
                     "comma-separated case_g_formulations.json files (runs split over processes) instead of running")
     ap.add_argument("--load", default="", help="with --formulations: the machine's load, for the page")
+    ap.add_argument("--element-length", type=float, default=0.2,
+                    help="with --formulations: belt element (body) length, m (guo_wang_conveyor's default 0.2); "
+                    "the chordal ripple of the rigid bodies on the drums scales as its square")
+    ap.add_argument("--pulley-contact", choices=("nodes", "builder"), default="nodes",
+                    help="with --formulations: 'nodes' pins nodal pulley contact (as the tables above it); "
+                    "'builder' runs guo_wang_conveyor's defaults (wrap contact on drums and rolls for the node belt)")
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
     length = 200.0 if args.quick else GUO_WANG["length"]
@@ -233,7 +245,8 @@ def main(argv: list[str] | None = None) -> None:
         else:
             runs = formulation_study(args.formulations.split(","), args.curves.split(","),
                                      [float(x) for x in args.ramps.split(",")], length, args.settle, out,
-                                     tuple(float(x) for x in args.prestarts.split(",")))
+                                     tuple(float(x) for x in args.prestarts.split(",")), args.pulley_contact,
+                                     args.element_length)
             wall = time.perf_counter() - t0
         section = formulations_section(runs, length, wall, args.load or "load not given")
         write_section(out / "case-g.md", section)
@@ -373,10 +386,12 @@ FORMULATION_NAMES = {"node_kelvin_voigt": "node", "rigid_body": "rigid body"}
 
 
 def formulation_study(formulations: list[str], curves: list[str], ramps: list[float], length: float,
-                      settle: float, out: pathlib.Path, prestarts: tuple[float, ...] = (0.0,)) -> list[dict[str, Any]]:
+                      settle: float, out: pathlib.Path, prestarts: tuple[float, ...] = (0.0,),
+                      contact: str = "nodes", element_length: float = 0.2) -> list[dict[str, Any]]:
     """Each pre-start, ramp and curve with each formulation, in that order; prints each run
     (and its progress) and saves the series to ``out/case_g_formulations.npz`` and the figures
-    to ``out/case_g_formulations.json`` as it goes, the run under way included."""
+    to ``out/case_g_formulations.json`` as it goes, the run under way included. ``contact``:
+    as :func:`start`'s; ``element_length``: m, to :func:`guo_wang_conveyor`."""
     runs: list[dict[str, Any]] = []
 
     def dump(rs: list[dict[str, Any]]) -> None:
@@ -401,7 +416,8 @@ def formulation_study(formulations: list[str], curves: list[str], ramps: list[fl
                         label(run, form, False)
                         dump(runs + [run])
 
-                    run = start(shape, ramp, pre, length, settle, progress=partial, formulation=form)
+                    run = start(shape, ramp, pre, length, settle, progress=partial, contact=contact,
+                                formulation=form, element_length=element_length)
                     label(run, form, True)
                     runs.append(run)
                     report(run, f"{FORMULATION_NAMES.get(form, form)} {shape}")
@@ -424,12 +440,17 @@ def paper_peak(ramp: float, prestart: float) -> tuple[float, str] | None:
 def formulations_section(runs: list[dict[str, Any]], length: float, wall: float, load: str) -> str:
     """The generated section: both formulations side by side against the paper's peaks."""
     paper_applies = abs(length - GUO_WANG["length"]) < 1.0
+    builder = any(r.get("pulley_contact", "nodes") != "nodes" for r in runs)
     partial = [r for r in runs if not r.get("complete", True)]
     rows = [BEGIN, "", "## Both formulations", "",
             f"Generated by `python benches/case_g.py --formulations ...` on the {length:g} m conveyor"
             f"{'' if paper_applies else ' (shortened: the paper' + chr(39) + 's peaks do not apply)'}; the runs took "
             f"{wall / 60:.1f} min of wall time ({load}). The same scene (`guo_wang_conveyor(formulation=...)`, "
-            "nodal pulley contact as in the tables above) with Hustrulid's node belt and with the rigid-body belt "
+            + ("nodal pulley contact as in the tables above" if not builder else
+               "nodal pulley contact as in the tables above unless the belt column names the contact on the "
+               "drums and rolls: with `--pulley-contact builder`, `guo_wang_conveyor`'s defaults, wrap "
+               "contact on both for the node belt")
+            + ") with Hustrulid's node belt and with the rigid-body belt "
             "(`belt.formulation = \"rigid_body\"`: Kubas's and Guo & Wang's rigid finite elements, bodies of the same "
             "0.2 m, mass, EA and EI, [kubas.md](kubas.md)), each relaxed from its placement on the pulleys' path, "
             "then started. T1 is read 10 m before the head drum every 10 ms, as above. Steps: the relaxation's and "
@@ -454,7 +475,7 @@ def formulations_section(runs: list[dict[str, Any]], length: float, wall: float,
         star = "" if r.get("complete", True) else f" * (to {r['steps'] * r['dt']:.1f} s)"
         rows.append(
             f"| {r['shape']} | {r['ramp']:g} | {r['prestart']:g} "
-            f"| {FORMULATION_NAMES.get(r['formulation'], r['formulation'])}{star} "
+            f"| {FORMULATION_NAMES.get(r['formulation'], r['formulation'])}{contact_label(r)}{star} "
             f"| {r['peak'] / 1e3:.1f} | {r['peak_time']:.2f} | {r['peak_filtered'] / 1e3:.1f} "
             f"| {r['peak_filtered_time']:.2f} | {(r['peak'] / r['peak_filtered'] - 1) * 100:+.1f} % "
             f"| {paper[1] if paper else 'n/a'} | {against} "
@@ -463,6 +484,16 @@ def formulations_section(runs: list[dict[str, Any]], length: float, wall: float,
             f"| {r['nodes'] * r['steps'] / r['run_wall']:.3g} |")
     rows += ["", coverage(runs, length), "", END]
     return "\n".join(rows)
+
+
+def contact_label(run: dict[str, Any]) -> str:
+    """The belt column's note of a run whose contact is not nodal on the drums and segment on
+    the rolls (runs without the fields are), or whose elements are not 0.2 m."""
+    drums, rolls = run.get("pulley_contact", "nodes"), run.get("idler_contact", "segment")
+    notes = [] if drums == "nodes" and rolls == "segment" else [f"drums {drums}, rolls {rolls}"]
+    if abs(run.get("element_length", 0.2) - 0.2) > 1e-12:
+        notes.append(f"{run['element_length']:g} m elements")
+    return f" ({'; '.join(notes)})" if notes else ""
 
 
 def coverage(runs: list[dict[str, Any]], length: float) -> str:

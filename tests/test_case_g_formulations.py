@@ -107,6 +107,27 @@ def test_start_peak_agrees_between_formulations(runs):
     assert peaks["rigid_body"] == pytest.approx(peaks["node_kelvin_voigt"], rel=0.03)
 
 
+# Issue 12's raw-peak target: at default settings the raw peak tight-side tension within 3 %
+# of the peak below 2 Hz. Measured (session 10) on this 2 s start: node belt +1.20 % (wrap
+# contact on drums and rolls, the builder's), rigid bodies +35.1 %: their raw peak comes at
+# full speed (4.26 s, against 1.15 s below 2 Hz), the chordal action of 0.2 m bodies on the
+# 0.4 m drums at v/l = 10 Hz (a chain on a sprocket: the strand meets the drum at a joint
+# on the corners' circle, speed ripple 1 - cos(a/2), a = l/R). It scales as l²: on a 100 m
+# case G running at 2 m/s, T1's ripple above 2 Hz is 3.74 kN rms with 0.2 m bodies and
+# 0.93 kN with 0.1 m (docs/case-g.md, "The raw peak at today's defaults"). The rigid belt
+# has no wrap contact, hence the strict xfail.
+@pytest.mark.parametrize("formulation", [
+    "node_kelvin_voigt",
+    pytest.param("rigid_body", marks=pytest.mark.xfail(
+        strict=True, reason="rigid bodies' chordal action on the drums: raw peak +35.1 % over the "
+        "peak below 2 Hz (issue 12's target 3 %); no wrap contact for rigid bodies")),
+])
+def test_raw_peak_within_3_percent_of_the_peak_below_2_hz(runs, formulation):
+    t1 = runs[formulation][1]["tension"][:, 0]
+    smooth = low_pass(t1, INTERVAL, 2.0)
+    assert t1.max() / smooth.max() - 1 < 0.03
+
+
 def test_bad_formulation_input_is_refused_by_name():
     with pytest.raises(beltrs.SceneError, match="formulation = 'rigid'"):
         guo_wang_conveyor(length=LENGTH, formulation="rigid")
@@ -137,3 +158,30 @@ def test_bad_formulation_input_is_refused_by_name():
     text = dumps_scene(guo_wang_conveyor(length=LENGTH, formulation="rigid_body"))
     back = loads_scene(text)
     assert back.belt.formulation == "rigid_body" and back.loads
+
+
+def test_bench_section_names_each_runs_contact():
+    """benches/case_g.py --formulations: a run at the builder's contact (--pulley-contact
+    builder) or with other elements is named so in the page's table; the old runs (no
+    contact recorded) and the nodal pinning read as before."""
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).resolve().parents[1] / "benches" / "case_g.py"
+    spec = importlib.util.spec_from_file_location("case_g_bench", path)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    run = dict(shape="harrison", ramp=30.0, prestart=0.0, formulation="node_kelvin_voigt", peak=86e3,
+               peak_time=18.0, peak_filtered=85e3, peak_filtered_time=18.5, takeup_max=0.7, nodes=9733,
+               dt=3.7e-5, stabilise_steps=1, steps=2, stabilise_wall=1.0, run_wall=1.0)
+    old = bench.formulations_section([run], 972.0, 60.0, "test")
+    assert "unless the belt column" not in old and "| node |" in old
+    wrap = dict(run, pulley_contact="wrap", idler_contact="wrap")
+    rigid = dict(run, formulation="rigid_body", pulley_contact="nodes", idler_contact="segment",
+                 element_length=0.1)
+    text = bench.formulations_section([run, wrap, rigid], 972.0, 60.0, "test")
+    assert "unless the belt column" in text
+    assert "| node (drums wrap, rolls wrap) |" in text
+    assert "| rigid body (0.1 m elements) |" in text
+    with pytest.raises(ValueError, match="contact must be"):
+        bench.start("harrison", 1.0, 0.0, LENGTH, 0.0, contact="wrap")
