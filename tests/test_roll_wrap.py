@@ -120,3 +120,54 @@ def test_roll_wrap_sag_placement_starts_every_roll_at_its_share():
     first = res.idler_force[0][carry]
     print(f"first sample: carry rolls max {first.max():.1f} N, median {np.median(first):.1f} N")
     assert first.max() <= 1.05 * np.median(first)
+
+
+def running_at(speed: float, length: float = 50.0, duration: float = 2.0, window: float = 1.0):
+    """A level builder conveyor (ST1250, 500 t/h, head drive on a Harrison curve to
+    ``speed``, roll wrap the builders' default) from its running design start: the roll
+    forces over the last ``window`` s of ``duration`` and at the first sample (the design
+    start's), and the head drive's torque over the window."""
+    curve = beltrs.StartCurve("harrison", speed=speed, ramp=4.0)
+    c = Conveyor(profile=[(0.0, 0.0), (length, 0.0)], belt="ST1250", capacity=500.0, speed=speed,
+                 start="running", drives=[DriveSpec("head", start_curve=curve)])
+    s = c.scene()
+    assert s.belt.idler_contact == "wrap"
+    sim = beltrs.Simulation(s)
+    res = sim.run(duration, record_interval=0.0005, tension=False, node_position=False, node_velocity=False)
+    w = res.time >= res.time[-1] - window
+    tau = res.drive_torque[w, res.pulley_names.index("head")]
+    return res.idler_force[w], res.idler_force[0], tau
+
+
+def test_at_3_m_s_no_roll_unloads_as_the_nodes_pass():
+    # The wrap circle's radius is speed-aware (contact::roll_wrap::wrap_radius: k v^2/g,
+    # 1.28 m at 3 m/s, above session 9's 3 l = 0.63 m): a node on the circle needs v^2/R_w
+    # towards its centre and only gravity gives it. Over 3 l the nodes flew at 3 m/s and the
+    # rolls unloaded in 4.7 % of the (roll, sample) pairs over the last 1 s (drive torque rms
+    # above 2 Hz 990 N*m); over the speed-aware circle in none (385 N*m;
+    # benches/roll_wrap_speed.py --length 50). Flight reads as a roll with no load: the
+    # assertion is that none has any, no tolerance.
+    force, _, tau = running_at(3.0)
+    unloaded = float(np.mean(force <= 0.0))
+    print(f"3 m/s: rolls unloaded {unloaded:.4f}, smallest roll force {force.min():.1f} N, "
+          f"torque mean {tau.mean():.1f} N*m")
+    assert unloaded == 0.0
+
+
+@pytest.mark.xfail(strict=True, reason="at 4-8 m/s the wrap contact's tangent-line damping unloads the rolls "
+                                       "at the node-passing rate (5 m/s: 12.5 % of the roll samples; "
+                                       "docs/wrap-contact.md, Session 10)")
+def test_at_5_m_s_no_roll_unloads_as_the_nodes_pass():
+    # The same conveyor at 5 m/s (R_w = 3.57 m): it runs (the rolls' summed force averaged
+    # over the last 1 s 33.3 kN against 51.4 kN at 2 m/s: the material per metre falls as
+    # 500 t/h / v), but the roll forces carry the node-passing line at v/l and its
+    # harmonics, and the rolls still unload in 12.5 % of the samples (14.1 % over 3 l), the
+    # belt's chain ~1 mm clear of the circle; drive torque rms above 2 Hz 1237 N*m (1446
+    # over 3 l), ripple 5.9 (benches/roll_wrap_speed.py --length 50). The cause: the wrap
+    # contact damps a node's motion across the wrapped piece's line, which a lumped node in
+    # the span crosses at v times half its kink in steady running, a force growing with v;
+    # with that damping at a tenth no roll unloads at 2-8 m/s (measured with a temporary
+    # switch; left to the lead, the function is this session's cogging work).
+    force, _, _ = running_at(5.0)
+    assert float(np.mean(force <= 0.0)) == 0.0
+

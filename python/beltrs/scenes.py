@@ -65,7 +65,10 @@ def conveyor_idler_contact(formulation: str) -> str:
     over it: no chordal action of the rolls at the node-passing frequency, and no push of
     the rolls on a held belt; docs/wrap-contact.md, "Roll wrap as the builders' default"),
     ``"segment"`` for the rigid-body belt (the engine refuses roll wrap with it). Costs
-    1.6-1.8x the wall time of the segment contact (``benches/roll_wrap_cost.py``)."""
+    1.6-1.8x the wall time of the segment contact (``benches/roll_wrap_cost.py``). Range:
+    clean to 3 m/s (its circle grows with the belt speed, ``max(R, 3 l, min(1.4 v^2/g,
+    20 l))``); at 4-8 m/s the rolls still unload at the node-passing rate
+    (docs/wrap-contact.md, "Session 10: roll wrap at speed")."""
     return "segment" if formulation == "rigid_body" else "wrap"
 
 

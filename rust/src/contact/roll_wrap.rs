@@ -46,31 +46,83 @@ use nalgebra::Vector2;
 type V2 = Vector2<f64>;
 
 /// Radius of the circle the wrap contact measures the belt's path over, in element rest
-/// lengths: [`wrap_radius`].
+/// lengths, at low speed: [`wrap_radius`].
 pub const ARC_SPREAD: f64 = 3.0;
 
+/// Margin k of [`wrap_radius`]'s speed term R_w ≥ k·v²/g: a node on the circle needs v²/R_w
+/// towards its centre, and gravity alone gives it, so at k = 1.4 it is held with
+/// (1 − 1/k) = 29 % of its weight to spare (the spare stays positive on inclines up to
+/// 44°), and the radius at 2 m/s stays session 9's 3·l for elements down to 0.2 m
+/// (1.4·v²/g = 0.571 m). Chosen by measurement (docs/wrap-contact.md, "Session 10: roll
+/// wrap at speed"): on the 50 m builder conveyor at 3 m/s the rolls unload at no node
+/// passing from k = 1.2 on (4.7 % of the roll samples at 3·l); k = 1, 1.2, 1.4, 1.7, 2, 3
+/// read 823, 366, 385, 553, 1242, 2071 N·m of drive torque rms above 2 Hz (990 at 3·l).
+pub const FLIGHT_MARGIN: f64 = 1.4;
+
+/// Largest radius of the speed term of [`wrap_radius`], in element rest lengths. The
+/// contact measures the four nodes nearest a roll (`contact::track_element`): the belt's
+/// arc over the circle, R_w·θ (θ the belt's turn over the roll), must stay within them, or
+/// the elements beyond press into the circle unmeasured. At 20·l the arc is 2·l at
+/// θ = 0.1. Measured: the 50 m builder conveyor was destroyed at R_w ≥ 7.3 m = 35·l (k = 2
+/// at 6 m/s, k = 1.4 at 8 m/s) and ran at 7.0 m; capped at 20·l it runs at 8 m/s.
+pub const ARC_SPREAD_MAX: f64 = 20.0;
+
 /// Radius (m) of the circle the belt's path over a roll of `radius` (m) is measured on, for
-/// elements of rest length `element` (m): `max(radius, ARC_SPREAD·element)`, the circle's
-/// top the roll's top (`contact::stage`; the sag placement bends the spans over the same
-/// circle, `model::sag`).
+/// elements of rest length `element` (m), a belt running at up to `speed` (m/s,
+/// [`scene_speed`]) under `gravity` (m/s²):
+/// `max(radius, ARC_SPREAD·element, min(FLIGHT_MARGIN·speed²/gravity, ARC_SPREAD_MAX·element))`
+/// (the speed term 0 without gravity), the circle's top the roll's top
+/// (`contact::stage`; the sag placement bends the spans over the same circle,
+/// `model::sag`).
 ///
 /// Why: a lumped node cannot follow a roll's own arc (R·θ, about 2 mm on a 0.0665 m roll)
 /// at speed. On the arc the element's path tension has no component towards the roll (the
 /// path's gradient is its tangent), so nothing gives the node the m·v²/R it needs there
-/// (1.2 kN at 2 m/s); it flies over the arc by h ≈ m²v⁴/(8T²R) and the roll unloads at each
-/// node passing, the worse the lower the tension (a 50 m builder conveyor: rms of the
-/// drive torque above 2 Hz 1414 N·m against 1164 with the segment contact). Over a circle of
-/// a few element lengths the needed force and the flight fall by R_w/R (9.4 on builder
-/// rolls at 0.21 m elements) and the arc lasts that much longer. Measured on that conveyor
-/// (`benches/ripple_drive.py base --roll-wrap --length 50`, the circle 1, 2, 3, 5, 10
-/// elements): rms 1340, 738, 284, 343, 557 N·m; 3 is the best, and on the 300 m
-/// conveyor it changes nothing (139 against 131 N·m). The cost of the larger circle: the
-/// belt's path over it lies (R_w − R)·(1/cos(θ/2) − 1) ≈ (R_w − R)·θ²/8 below the path over
-/// the roll (0.45 mm at θ = 0.08, a 7 % deeper sag at the roll on a 1.2 m pitch) and is
-/// shorter by (R_w − R)·θ³/12 per roll (24 µm), the placement and the contact measuring the
-/// same circle. With finer elements the circle shrinks to the roll.
-pub fn wrap_radius(radius: f64, element: f64) -> f64 {
-    radius.max(ARC_SPREAD * element)
+/// (1.2 kN at 2 m/s) but gravity; it flies over the arc by h ≈ m²v⁴/(8T²R) and the roll
+/// unloads at each node passing, the worse the lower the tension (a 50 m builder conveyor:
+/// rms of the drive torque above 2 Hz 1414 N·m against 1164 with the segment contact). On
+/// a circle of radius R_w gravity holds the node while v² < g·R_w. Session 9 took
+/// R_w = 3·l (measured on that conveyor at 2 m/s, the circle 1, 2, 3, 5, 10 elements: rms
+/// 1340, 738, 284, 343, 557 N·m; 2·l = 0.42 m ≈ v²/g); above about √(3·g·l) = 2.5 m/s the
+/// nodes flew again (3 m/s: 990 N·m, rolls unloaded in 4.7 % of the samples), hence the
+/// speed term (385 N·m, none unloaded). The continuum belt would not fly (a string leaves a
+/// support only if T < m'v²): the term is the lumping's, and it vanishes as the speed does.
+/// The cost of the larger circle: the belt's path over it lies (R_w − R)·(1/cos(θ/2) − 1)
+/// ≈ (R_w − R)·θ²/8 below the path over the roll (0.45 mm at θ = 0.08 and R_w = 0.63 m;
+/// 2.6 mm at R_w = 3.6 m, 5 m/s) and is shorter by (R_w − R)·θ³/12 per roll, the placement
+/// and the contact measuring the same circle; the roll's load is spread over the arc R_w·θ.
+pub fn wrap_radius(radius: f64, element: f64, speed: f64, gravity: f64) -> f64 {
+    let r = radius.max(ARC_SPREAD * element);
+    if gravity > 0.0 && speed.is_finite() {
+        r.max((FLIGHT_MARGIN * speed * speed / gravity).min(ARC_SPREAD_MAX * element))
+    } else {
+        r
+    }
+}
+
+/// The largest belt speed the scene's drives and start give, m/s, for [`wrap_radius`]: the
+/// design start's `initial.speed`, each speed-controlled drive's start curve (`speed`, and
+/// its creep speed), and each direct-on-line motor's no-load belt speed (synchronous speed
+/// / gear ratio × the pulley's radius). 0 if none gives one (torque-table drives only, no
+/// design start at speed): the radius is then the low-speed one, `max(R, 3·l)`.
+pub fn scene_speed(scene: &crate::scene::Scene) -> f64 {
+    let mut v = scene.initial.as_ref().map_or(0.0, |i| i.speed.abs());
+    for p in &scene.pulleys {
+        let Some(d) = p.drive.as_ref() else { continue };
+        if let Some(c) = d.start_curve.as_ref() {
+            v = v.max(c.speed.abs()).max(c.creep_speed_or_default().abs());
+        }
+        if let Some(m) = d.motor.as_ref() {
+            if m.gear_ratio > 0.0 {
+                v = v.max(m.synchronous_speed.abs() / m.gear_ratio * p.radius);
+            }
+        }
+    }
+    if v.is_finite() {
+        v
+    } else {
+        0.0
+    }
 }
 
 /// Wrap contact with one roll. `element` is the roll's tracked element (updated as for the

@@ -35,11 +35,13 @@ pub struct IdlerModel {
 /// ratio is taken on the element mass).
 pub(super) fn compile(scene: &Scene, l0: f64) -> Vec<IdlerModel> {
     let element_mass = scene.belt.mass_per_length * l0;
+    let speed = crate::contact::roll_wrap::scene_speed(scene);
     scene
         .idlers
         .iter()
         .map(|d| {
-            let wrap_radius = crate::contact::roll_wrap::wrap_radius(d.radius, l0);
+            let wrap_radius =
+                crate::contact::roll_wrap::wrap_radius(d.radius, l0, speed, scene.gravity);
             IdlerModel {
                 center: Vector2::new(d.center[0], d.center[1]),
                 radius: d.radius,

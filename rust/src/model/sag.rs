@@ -134,6 +134,7 @@ pub(super) fn shape(
     if g <= 0.0 || n < 3 {
         return SagShape { lines, kinks };
     }
+    let speed = crate::contact::roll_wrap::scene_speed(scene);
     for (seg, &from) in path.segments.iter().zip(&path.starts) {
         let Segment::Line { a, b } = *seg else {
             continue;
@@ -164,7 +165,7 @@ pub(super) fn shape(
                         x,
                         top,
                         radius: if kinked {
-                            crate::contact::roll_wrap::wrap_radius(r.radius, element)
+                            crate::contact::roll_wrap::wrap_radius(r.radius, element, speed, g)
                         } else {
                             r.radius
                         },
