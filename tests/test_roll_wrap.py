@@ -166,8 +166,9 @@ def test_at_5_m_s_no_roll_unloads_as_the_nodes_pass():
     # over 3 l), ripple 5.9 (benches/roll_wrap_speed.py --length 50). The cause: the wrap
     # contact damps a node's motion across the wrapped piece's line, which a lumped node in
     # the span crosses at v times half its kink in steady running, a force growing with v;
-    # with that damping at a tenth no roll unloads at 2-8 m/s (measured with a temporary
-    # switch; left to the lead, the function is this session's cogging work).
+    # with that damping at a tenth no roll unloads at 2-8 m/s, but case G's 10 Hz line at
+    # 2 m/s grows (measured with a temporary switch; left to the lead, the function is this
+    # session's cogging work).
     force, _, _ = running_at(5.0)
     assert float(np.mean(force <= 0.0)) == 0.0
 
