@@ -236,7 +236,9 @@ class DriveSpec:
             conveyor's rigid-body inertia, the motor's included); ``"ideal"``: the ideal
             speed follower (infinite bandwidth: the drum follows the start curve exactly
             while the torque is within the limit), which needs no ``controller``. The ideal
-            follower with ``inertia=0`` is the builder's drive before session 10.
+            follower with ``inertia=0`` is the builder's drive before session 10. Not for a
+            drive with a ``motor`` (started direct on line) or a ``follow`` master (both
+            refuse ``"ideal"``).
         controller: the PI speed controller's settings (:class:`beltrs.SpeedController`) for
             ``control="vfd"``; with its ``droop``, speed-controlled drives share load in
             proportion to rated torque / droop. Default None: ``SpeedController()``.
