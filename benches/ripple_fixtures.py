@@ -69,6 +69,10 @@ def main(argv=None) -> int:
     ap.add_argument("--pi", action="store_true",
                     help="a PI speed controller (beltrs.SpeedController, default gains) on the head drive instead of "
                          "the ideal speed follower")
+    ap.add_argument("--control", default="vfd", choices=["vfd", "ideal", "ideal0"],
+                    help="the builders' drive: vfd (default since session 10: PI speed controller with the motor's "
+                         "catalogue inertia), ideal (the ideal speed follower, same inertia) or ideal0 (the ideal "
+                         "follower without motor inertia: the builders' drive of session 9, except case G's 3 kg*m^2)")
     ap.add_argument("--start", default="rest", choices=["rest", "running"],
                     help="rest: the test's start (case G stabilised at rest, the 300 m from its design state at "
                          "rest) then the ramp; running: the builder's running design start (steady-running "
@@ -95,10 +99,16 @@ def main(argv=None) -> int:
         length = 150.0
         curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=a.ramp)
         kw = {} if a.element is None else {"element_length": a.element}
+        kw["control"] = "vfd" if a.control == "vfd" else "ideal"
         if a.start == "running":
-            sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, start="running", **kw)))
+            scene = belt(guo_wang_conveyor(curve, length=length, start="running", **kw))
         else:
-            sim = beltrs.Simulation(belt(guo_wang_conveyor(curve, length=length, **kw)))
+            scene = belt(guo_wang_conveyor(curve, length=length, **kw))
+        if a.control == "ideal0":
+            scene = replace(scene, pulleys=[replace(p, drive=replace(p.drive, inertia=0.0)) if p.drive is not None
+                                            else p for p in scene.pulleys])
+        sim = beltrs.Simulation(scene)
+        if a.start != "running":
             sim.stabilise(tolerance=1e-5, max_steps=400_000)
         ramp = 0.0 if a.start == "running" else a.ramp
         data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", ramp + a.steady + MARGIN)
@@ -112,10 +122,21 @@ def main(argv=None) -> int:
             c = Conveyor(profile=[(0.0, 0.0), (LENGTH, 0.0)], belt="ST1250", capacity=500.0, speed=a.speed,
                          drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=a.speed,
                                                                                  ramp=a.ramp))], **kw)
-        sim = beltrs.Simulation(belt(c.scene()))
+        c.drives = [replace(d, control="vfd" if a.control == "vfd" else "ideal",
+                            inertia=0.0 if a.control == "ideal0" else d.inertia) for d in c.drives]
+        scene = belt(c.scene())
+        sim = beltrs.Simulation(scene)
         ramp = 0.0 if a.start == "running" else a.ramp
         data = measure(sim, (290.0, 0.0), "head", ramp + a.steady + MARGIN)
     f = ripple_figures(data, WINDOW, margin=MARGIN)
+    # the gearbox's output shaft: drive_torque - J i^2 domega/dt (docs/drives.md, "Which torque ...")
+    import numpy as np
+
+    inertia = next(p.drive.inertia for p in scene.pulleys if p.drive is not None)
+    shaft = data["torque"] - inertia * np.gradient(data["speed"], data["time"])
+    fs = ripple_figures(dict(data, torque=shaft), WINDOW, margin=MARGIN)
+    f.update(drive_inertia=inertia, shaft_ripple=fs["torque_ripple"], shaft_mean=fs["torque_mean"],
+             shaft_min=fs["torque_min"], shaft_max=fs["torque_max"])
     if a.save:
         import numpy as np
 
@@ -124,7 +145,8 @@ def main(argv=None) -> int:
     f.update(which=a.which, idler_contact=a.idler_contact, loss_factor=a.loss_factor,
              loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
-             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, start=a.start, ramp=a.ramp,
+             wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, control=a.control,
+             start=a.start, ramp=a.ramp,
              steady=a.steady,
              element=a.element, speed=a.speed, nodes=sim.nodes)
     if a.windows:

@@ -71,15 +71,17 @@ def design(cfg: dict) -> tuple[float, float, beltrs.statics.TensionProfile]:
     study's steepest curve, and the DIN 22101 tensions, shared by every case."""
     steepest = max(curves(cfg), key=lambda c: float(np.max(c.acceleration_at(np.linspace(0, c.end, 2001)))))
     ref = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
-                   speed=cfg["speed"], drives=[DriveSpec("head", start_curve=steepest)])
+                   speed=cfg["speed"], drives=[DriveSpec("head", start_curve=steepest, control="ideal")])
     return ref.takeup_tension(), ref.motor_power("head"), ref.statics()
 
 
 def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float) -> beltrs.Scene:
     """The study's conveyor started along ``curve`` (examples/startup_study.toml is the
-    full-size one with the first curve)."""
+    full-size one with the first curve). The drive is the ideal speed follower
+    (``control="ideal"``, not the builder's default VFD): the study compares the curves
+    themselves, each followed exactly within the torque limit."""
     c = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
-                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power)],
+                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power, control="ideal")],
                  takeup=TakeupSpec("tail", tension=tension))
     return c.scene()
 

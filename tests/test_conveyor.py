@@ -56,16 +56,21 @@ def test_builder_choices_by_hand():
     assert p.effective == pytest.approx(3758.4, rel=1e-4)
     # M_eq = belt 22.392 * (300 + 2 pi 0.4) = 6773.8 + material 55.556 * 145 = 8055.6
     #      + rolls 0.8 * (20 * 150 / 1.2 + 15 * 150 / 3) = 2600 + drums 2 * 0.8 * 800 = 1280
-    #      = 18709.4 kg; Harrison a_max = pi * 2 / (2 * 4) = 0.785398 m/s^2
-    #   start force 18709.4 * 0.785398 + 3758.4 = 18452.7 N
-    assert c.moving_mass() == pytest.approx(18709.4, rel=1e-4)
-    assert c.start_force() == pytest.approx(18452.7, rel=1e-4)
+    #      = 18709.4 kg without the motor; Harrison a_max = pi * 2 / (2 * 4) = 0.785398 m/s^2.
+    # The motor's rotor (the catalogue law J = 2.247e-4 T_r^1.374, T_r = P / 157.08 rad/s)
+    # counts J (157.08 / 2)^2 = 6168.5 J kg; the power it is sized for depends on it:
+    #   no rotor: 18452.7 N -> 26 kW -> T_r 165.5 N*m, J 0.2514 -> +1551 kg: 19670 N -> 28 kW
+    #   28 kW: T_r 178.25 N*m, J 0.27831 -> +1716.8 kg = 20426.2 kg:
+    #   start force 20426.2 * 0.785398 + 3758.4 = 19801.0 N -> 28 kW again (the fixed point).
+    assert c.moving_mass() == pytest.approx(20426.2, rel=1e-4)
+    assert c.start_force() == pytest.approx(19801.0, rel=1e-4)
+    assert c.motor_inertia("head") == pytest.approx(0.27831, rel=1e-4)
     # Takeup: grip e^(0.35 pi) - 1 = 2.00287 -> T2 >= 9213 N (T2 = 9193.8 at 10 kN: +19 N);
     # carry sag (22.392 + 55.556) * 9.81 * 1.2 / 0.08 = 11470 N above the tail's 10 kN: +1470;
     # return sag 22.392 * 9.81 * 3 / 0.08 = 8237 N < 9194: none. 11470 N -> 12 kN.
     assert c.takeup_tension() == 12e3
-    # Motor: max(1.25 * 3758.4, 18452.7 / (0.9 * 1.6)) * 2 m/s = 25629 W -> 26 kW.
-    assert c.motor_power("head") == 26e3
+    # Motor: max(1.25 * 3758.4, 19801.0 / (0.9 * 1.6)) * 2 m/s = 27501 W -> 28 kW.
+    assert c.motor_power("head") == 28e3
 
 
 def test_scene_structure():
@@ -77,10 +82,13 @@ def test_scene_structure():
     # Takeup: 12 kN per strand, pulling along the strands away from the head.
     assert tail.takeup.counterweight * 9.81 == pytest.approx(24e3, rel=1e-12)
     assert tail.takeup.direction == (-1.0, 0.0)
-    # Drive: clockwise (negative) start curve; torque limit 1.6 x rated 26 kW at the drum:
-    # 26e3 W / (2 m/s / 0.4 m) * 1.6 = 8320 N*m.
+    # Drive: clockwise (negative) start curve; torque limit 1.6 x rated 28 kW at the drum:
+    # 28e3 W / (2 m/s / 0.4 m) * 1.6 = 8960 N*m; a PI speed controller with the rotor's
+    # 0.27831 kg*m^2 at the drum: x (157.08 rad/s / 5 rad/s)^2 = 274.68 kg*m^2.
     assert head.drive.start_curve.speed == -2.0
-    assert head.drive.max_torque == pytest.approx(8320.0, rel=1e-12)
+    assert head.drive.max_torque == pytest.approx(8960.0, rel=1e-12)
+    assert head.drive.controller == beltrs.SpeedController()
+    assert head.drive.inertia == pytest.approx(274.68, rel=1e-4)
     # Idlers every 1.2 m (125) and 3 m (50) from half a pitch in; f and rotating masses.
     carry = [d for d in s.idlers if d.center[1] > -0.4]
     assert len(carry) == 125 and len(s.idlers) == 125 + 50
@@ -228,7 +236,11 @@ def test_steady_running_agrees_with_din_22101():
     assert t1 == pytest.approx(d1, rel=0.03)
     assert t2 == pytest.approx(d2, rel=0.03)
     drum = -data["pulley_speed"][:, sim.scene.pulley_index("head")] * r
-    np.testing.assert_allclose(drum[t > RAMP + 0.5], 2.0, rtol=1e-9)  # within its torque limit
+    # Within its torque limit: the builder's VFD (a PI speed loop, 10 rad/s, with the motor's
+    # inertia; session 10) runs the drum at the curve's speed after the ramp within the loop's
+    # answer to the strands' modes the start leaves: measured 0.29 % at most (2.0057 m/s 0.5 s
+    # after the ramp, 0.024 % at the end); 0.5 % allowed. (The ideal follower held it to 1e-9.)
+    assert np.abs(drum[t > RAMP + 0.5] / 2.0 - 1).max() < 0.005
 
 
 def test_startup_study_quick():

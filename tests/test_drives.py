@@ -326,8 +326,8 @@ def test_builder_makes_pi_master_and_follower():
             '[[conveyor.drives]]\nlocation = "tail"\nshare = 0.4\nfollow = "head"\n')
     assert conveyor.loads(text).scene().to_dict() == scene.to_dict()
     with pytest.raises(SceneError, match=r"drives\[1\]\.follow = 'head': the master must be a drive there with a "
-                                         r"controller"):
-        Conveyor(profile=[(0, 0), (150, 0)], drives=[DriveSpec("head", share=0.6),
+                                         r"PI speed controller"):
+        Conveyor(profile=[(0, 0), (150, 0)], drives=[DriveSpec("head", share=0.6, control="ideal"),
                                                      DriveSpec("tail", share=0.4, follow="head")]).scene()
     with pytest.raises(SceneError, match=r"conveyor\.drives\[0\]\.controller\.bandwith.*did you mean"):
         conveyor.loads('[conveyor]\n[[conveyor.drives]]\n[conveyor.drives.controller]\nbandwith = 3.0\n')

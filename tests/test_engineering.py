@@ -23,9 +23,12 @@ SPEED, RAMP = 2.0, 1.5  # m/s, s: a Harrison start of the head drive
 
 @pytest.fixture(scope="module")
 def start():
-    """A 40 m level builder conveyor (head drive, tail takeup) started to 2 m/s."""
+    """A 40 m level builder conveyor (head drive, tail takeup) started to 2 m/s by the ideal
+    speed follower (``control="ideal"``; the builder's default since session 10 is the VFD),
+    whose drum reaches the curve's speed exactly."""
     c = Conveyor(profile=[(0, 0), (40.0, 0)], belt="ST1250", capacity=400.0, speed=SPEED,
-                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=SPEED, ramp=RAMP))])
+                 drives=[DriveSpec("head", start_curve=beltrs.StartCurve("harrison", speed=SPEED, ramp=RAMP),
+                                   control="ideal")])
     sim = beltrs.Simulation(c.scene())
     sim.stabilise(tolerance=1e-5, max_steps=400_000)
     return sim, sim.run(RAMP + 1.5, record_interval=0.01)

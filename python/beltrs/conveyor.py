@@ -52,6 +52,7 @@ __all__ = [
     "TakeupSpec",
     "load",
     "loads",
+    "motor_rotor_inertia",
     "pulley_radius_for",
 ]
 
@@ -184,6 +185,24 @@ def _return_default() -> IdlerSet:
 
 
 LOCATIONS = ("head", "tail")
+CONTROLS = ("vfd", "ideal")
+
+#: The catalogue law of :func:`motor_rotor_inertia`: J = MOTOR_INERTIA_COEFF · T_r^MOTOR_INERTIA_EXP
+#: (kg·m², T_r the rated torque in N·m), a least-squares fit in log-log of 19 IEC
+#: low-voltage cage motors, 0.75-22 kW, 2 and 4 poles (docs/drives.md, "Motor inertia").
+MOTOR_INERTIA_COEFF = 2.247e-4
+MOTOR_INERTIA_EXP = 1.374
+
+
+def motor_rotor_inertia(rated_power: float, rated_speed: float) -> float:
+    """Rotor inertia of an IEC low-voltage cage induction motor, kg·m², from its rated power
+    (W) and rated speed (rad/s): J = 2.247e-4 · T_r^1.374 with T_r = rated_power /
+    rated_speed in N·m, fitted to catalogue data (docs/drives.md, "Motor inertia": 19
+    motors, 0.75-22 kW, 2.5-143 N·m, rms error 28 % in J; above 143 N·m an extrapolation,
+    a 150 kW 1000 rpm motor's 1432 N·m gives 4.9 kg·m²)."""
+    p = check("rated_power", rated_power, positive=True, unit="W")
+    n = check("rated_speed", rated_speed, positive=True, unit="rad/s")
+    return MOTOR_INERTIA_COEFF * (p / n) ** MOTOR_INERTIA_EXP
 
 
 @dataclass
@@ -195,23 +214,34 @@ class DriveSpec:
         share: its part of the steady peripheral force in the static calculation, in (0, 1];
             the shares of all drives add up to 1. Default 1.
         start_curve: the starting curve (belt speed, positive, m/s). Default None: Harrison,
-            10 s to the conveyor's speed. Each drive holds its curve (ideal speed control;
-            several speed-held drives share the load by the belt's elasticity, not by a set
-            share).
+            10 s to the conveyor's speed. It is the speed controller's reference (``control``);
+            several speed-controlled drives share the load by the belt's elasticity and their
+            controllers' ``droop``, not by a set share.
         power: rated motor power, W, > 0. Default None: chosen (:meth:`Conveyor.motor_power`):
             the larger of 1.25 × share × F_U × v (steady running with a 25 % margin) and
             the rigid-body start force share × (M_eq · a_max + F_U) × v / (0.9 ×
             ``torque_limit``) (the start curve followed within the torque limit with 10 %
             to spare), rounded up to 1 kW.
         torque_limit: the motor's current limit, × its rated torque. Default 1.6.
-        inertia: motor and coupling inertia at the motor shaft, kg·m², with the motor's
-            rated speed ``motor_speed`` (reduced to the drum through the gearbox ratio).
-            Default 0.
+        inertia: motor rotor (and coupling) inertia at the motor shaft, kg·m², >= 0, turning
+            at the motor's rated speed ``motor_speed`` (counted at the drum as inertia ×
+            ratio², ratio = motor_speed / drum speed, the gearbox). Default None: the
+            catalogue law :func:`motor_rotor_inertia` of the rated torque power /
+            ``motor_speed`` (a 150 kW motor: 2.8 kg·m² at 1500 rpm, 4.9 at 1000 rpm); 0
+            for a drive with a ``motor`` (its own ``rotor_inertia`` counts) and for none.
         motor_speed: rated motor speed, rad/s. Default 1500 rpm.
-        controller: a PI speed controller (:class:`beltrs.SpeedController`, gains from
-            physics by default) instead of the ideal speed follower; with its ``droop``,
-            speed-controlled drives share load in proportion to rated torque / droop.
-            Default None (ideal).
+        control: ``"vfd"`` (default): a variable-speed drive, a PI speed controller with the
+            torque limit and the motor's inertia, ``controller`` or else
+            :class:`beltrs.SpeedController` with its default gains (tuned on the whole
+            conveyor's rigid-body inertia, the motor's included); ``"ideal"``: the ideal
+            speed follower (infinite bandwidth: the drum follows the start curve exactly
+            while the torque is within the limit), which needs no ``controller``. The ideal
+            follower with ``inertia=0`` is the builder's drive before session 10. Not for a
+            drive with a ``motor`` (started direct on line) or a ``follow`` master (both
+            refuse ``"ideal"``).
+        controller: the PI speed controller's settings (:class:`beltrs.SpeedController`) for
+            ``control="vfd"``; with its ``droop``, speed-controlled drives share load in
+            proportion to rated torque / droop. Default None: ``SpeedController()``.
         follow: location of a master drive this one follows (master-slave torque
             sharing, :class:`beltrs.TorqueFollow`): it applies share / master's share of
             the master's torque (the drums have one radius). The master needs a
@@ -229,8 +259,9 @@ class DriveSpec:
     start_curve: Optional[StartCurve] = None
     power: Optional[float] = None
     torque_limit: float = 1.6
-    inertia: float = 0.0
+    inertia: Optional[float] = None
     motor_speed: float = 1500.0 * 2 * math.pi / 60
+    control: str = "vfd"
     controller: Optional[SpeedController] = None
     follow: Optional[str] = None
     motor: Optional[Motor] = None
@@ -243,8 +274,15 @@ class DriveSpec:
         if self.power is not None:
             check(f"{where}.power", self.power, positive=True, unit="W")
         check(f"{where}.torque_limit", self.torque_limit, positive=True, unit="x rated torque")
-        check(f"{where}.inertia", self.inertia, unit="kg*m^2")
+        if self.inertia is not None:
+            check(f"{where}.inertia", self.inertia, unit="kg*m^2")
         check(f"{where}.motor_speed", self.motor_speed, positive=True, unit="rad/s")
+        if self.control not in CONTROLS:
+            raise SceneError(f"{where}.control = {self.control!r}: must be \"vfd\" (a PI speed controller with the "
+                             "motor's inertia) or \"ideal\" (the ideal speed follower)")
+        if self.control == "ideal" and self.controller is not None:
+            raise SceneError(f"{where}.control = \"ideal\": the ideal speed follower has no controller; leave "
+                             "controller out, or use control = \"vfd\"")
         if self.start_curve is not None and not isinstance(self.start_curve, StartCurve):
             raise SceneError(f"{where}.start_curve = {self.start_curve!r}: expected a beltrs.StartCurve")
         if self.controller is not None and not isinstance(self.controller, SpeedController):
@@ -256,13 +294,16 @@ class DriveSpec:
             if self.start_curve is not None or self.controller is not None or self.follow is not None:
                 raise SceneError(f"{where}.motor: a motor started direct on line runs on its own curve; "
                                  "leave start_curve, controller and follow out")
+            if self.control != "vfd":
+                raise SceneError(f"{where}.control = {self.control!r}: a motor started direct on line has no "
+                                 "speed control; leave control out")
         if self.follow is not None:
             if self.follow not in LOCATIONS or self.follow == self.location:
                 raise SceneError(f"{where}.follow = {self.follow!r}: must be the location of another drive "
                                  f"(\"head\" or \"tail\")")
-            if self.start_curve is not None or self.controller is not None:
+            if self.start_curve is not None or self.controller is not None or self.control != "vfd":
                 raise SceneError(f"{where}.follow = {self.follow!r}: a follower takes its torque from its master; "
-                                 "leave start_curve and controller out")
+                                 "leave start_curve, control and controller out")
 
 
 TAKEUP_KINDS = ("gravity", "winch", "fixed")
@@ -534,9 +575,10 @@ class Conveyor:
         for i, d in enumerate(self.drives):
             if d.follow is not None:
                 master = next((m for m in self.drives if m.location == d.follow), None)
-                if master is None or master.controller is None or master.follow is not None:
+                if (master is None or master.control != "vfd" or master.motor is not None
+                        or master.follow is not None):
                     raise SceneError(f"drives[{i}].follow = {d.follow!r}: the master must be a drive there with a "
-                                     "controller (a PI speed controller), not itself a follower")
+                                     "PI speed controller (control = \"vfd\"), not itself a follower")
         places = [d.location for d in self.drives]
         if len(set(places)) != len(places):
             raise SceneError(f"drives = {places!r}: one drive per pulley (a second motor on one drum is "
@@ -919,37 +961,91 @@ class Conveyor:
                 raise SceneError(f"motor.rated_speed = {speed!r}: give the motor's rated speed, rad/s, > 0")
             ratio = speed / (self.speed / r)
             motor = replace(d.motor, gear_ratio=ratio, rotation="cw")
-            return Drive(motor=motor, inertia=d.inertia * ratio**2, flywheel=d.flywheel)
-        power = self.motor_power(d.location)
+            return Drive(motor=motor, inertia=self._motor_inertia(d, 0.0) * ratio**2, flywheel=d.flywheel)
+        powers = self._powers()
+        power = powers[d.location]
         ratio = d.motor_speed / (self.speed / r)
         rated = power / d.motor_speed * ratio  # N*m at the drum
+        inertia = (self._motor_inertia(d, power) + d.flywheel) * ratio**2
         if d.follow is not None:
             master = next(m for m in self.drives if m.location == d.follow)
             return Drive(follow=TorqueFollow(master=d.follow, ratio=d.share / master.share),
-                         max_torque=d.torque_limit * rated, inertia=(d.inertia + d.flywheel) * ratio**2)
-        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated,
-                     inertia=(d.inertia + d.flywheel) * ratio**2, controller=d.controller)
+                         max_torque=d.torque_limit * rated, inertia=inertia)
+        controller = None
+        if d.control == "vfd":
+            controller = d.controller if d.controller is not None else SpeedController()
+        return Drive(start_curve=self._curve(d), max_torque=d.torque_limit * rated, inertia=inertia,
+                     controller=controller)
 
     def motor_power(self, location: str = "head") -> float:
         """Rated power of the drive at ``location``, W (given, or chosen as
         :class:`DriveSpec` says)."""
+        self._drive_at(location)
+        return self._powers()[location]
+
+    def motor_inertia(self, location: str = "head") -> float:
+        """Motor inertia of the drive at ``location`` at its motor shaft, kg·m² (given as
+        ``inertia``, or :func:`motor_rotor_inertia` of its rated power and speed; a DOL
+        ``motor``'s ``rotor_inertia`` not included)."""
+        d = self._drive_at(location)
+        return self._motor_inertia(d, self._powers()[location])
+
+    def _drive_at(self, location: str) -> DriveSpec:
         for d in self.drives:
             if d.location == location:
-                if d.motor is not None and d.motor.rated_power is not None:
-                    return float(d.motor.rated_power)
-                if d.power is not None:
-                    return float(d.power)
-                running = d.share * self._running_force()
-                start = d.share * self.start_force()
-                need = max(1.25 * running, start / (0.9 * d.torque_limit)) * self.speed
-                return float(math.ceil(max(need, 1.0) / 1e3) * 1e3)
+                return d
         raise SceneError(f"location = {location!r}: no drive there (drives: {[d.location for d in self.drives]})")
+
+    @staticmethod
+    def _motor_inertia(d: DriveSpec, power: float) -> float:
+        """The drive's ``inertia`` (kg·m² at the motor shaft), or the catalogue law's for
+        ``power`` W at ``motor_speed`` (none beside a DOL ``motor``)."""
+        if d.inertia is not None:
+            return float(d.inertia)
+        if d.motor is not None or power == 0.0:  # no motor inertia: a DOL motor's own, or the power iteration's start
+            return 0.0
+        return motor_rotor_inertia(power, d.motor_speed)
+
+    def _powers(self) -> dict[str, float]:
+        """Every drive's rated power, W, by location: given, or chosen as :class:`DriveSpec`
+        says. The start force counts the motors' inertia, which the catalogue law takes
+        from the power: iterated from no motor inertia to the fixed point (whole kW; two or
+        three rounds)."""
+        given = {}
+        for d in self.drives:
+            if d.motor is not None and d.motor.rated_power is not None:
+                given[d.location] = float(d.motor.rated_power)
+            elif d.power is not None:
+                given[d.location] = float(d.power)
+        if len(given) == len(self.drives):
+            return given
+        from .din22101 import rigid_start_force
+
+        running = self._running_force()
+        a_max = max(self._peak_acceleration(d) for d in self.drives)
+        base = self._moving_mass_without_motors()
+        powers = {d.location: given.get(d.location, 0.0) for d in self.drives}
+        for _ in range(50):
+            mass = base + self._motors_mass(powers)
+            start = rigid_start_force(mass, a_max, running)
+            new = dict(given)
+            for d in self.drives:
+                if d.location not in given:
+                    need = max(1.25 * d.share * running, d.share * start / (0.9 * d.torque_limit)) * self.speed
+                    new[d.location] = float(math.ceil(max(need, 1.0) / 1e3) * 1e3)
+            if new == powers:
+                break
+            powers = new
+        return powers
 
     def moving_mass(self) -> float:
         """M_eq, every moving mass reduced to the belt line, kg (CEMA's rigid-belt start,
         thesis §1.4): belt over both strands and the drum wraps, material on the loaded
         length, idler rolls (I/r² = 0.8 × rotating mass, thin tubes), the two drums
         (0.8 × mass) and the drives' motor inertia through the gearbox."""
+        return self._moving_mass_without_motors() + self._motors_mass(self._powers())
+
+    def _moving_mass_without_motors(self) -> float:
         prof = self.carry_profile
         r = self.radius
         discharge = prof.length if self.discharge is None else float(self.discharge)
@@ -958,9 +1054,12 @@ class Conveyor:
         rolls = 0.8 * (self.carry.rotating_mass * prof.length / self.carry.pitch
                        + self.returns.rotating_mass * prof.length / self.returns.pitch)
         drums = 2 * 0.8 * self._drum_mass()
-        motors = sum(self._shaft_inertia(d) * (self._shaft_speed(d) / self.speed) ** 2
-                     for d in self.drives)  # I ratio^2 / r^2
-        return belt + material + rolls + drums + motors
+        return belt + material + rolls + drums
+
+    def _motors_mass(self, powers: dict[str, float]) -> float:
+        """The drives' high-speed shafts reduced to the belt line, kg: I·ratio²/r²."""
+        return sum(self._shaft_inertia(d, powers[d.location]) * (self._shaft_speed(d) / self.speed) ** 2
+                   for d in self.drives)
 
     @staticmethod
     def _shaft_speed(d: DriveSpec) -> float:
@@ -969,14 +1068,15 @@ class Conveyor:
             return float(d.motor.rated_speed)
         return float(d.motor_speed)
 
-    @staticmethod
-    def _shaft_inertia(d: DriveSpec) -> float:
+    @classmethod
+    def _shaft_inertia(cls, d: DriveSpec, power: float) -> float:
         """Inertia on the drive's high-speed shaft that turns with the belt, kg*m^2: motor
-        and coupling (``inertia``), flywheel, and a rigidly geared DOL motor's rotor."""
+        and coupling (``inertia``, or the catalogue law's for ``power`` W), flywheel, and a
+        rigidly geared DOL motor's rotor."""
         rotor = 0.0
         if d.motor is not None and d.motor.coupling is None:
             rotor = float(d.motor.rotor_inertia)
-        return float(d.inertia) + float(d.flywheel) + rotor
+        return cls._motor_inertia(d, power) + float(d.flywheel) + rotor
 
     def start_force(self) -> float:
         """Peak drive force of a rigid-belt start along the drives' curves, N:

@@ -8,6 +8,7 @@ from typing import Any, Optional
 
 from . import _beltrs, din22101
 from ._beltrs import SceneError
+from .conveyor import motor_rotor_inertia
 from .scene import (
     Belt,
     Drive,
@@ -19,6 +20,7 @@ from .scene import (
     Recording,
     Scene,
     Solver,
+    SpeedController,
     StartCurve,
     Takeup,
 )
@@ -327,7 +329,8 @@ GUO_WANG = dict(
     return_rotating_mass=15.0,  # kg per return idler (assumed)
     roll_radius=0.0665,  # m, 133 mm rolls (assumed)
     takeup_tension=50e3,  # N per strand at the tail (assumed: counterweight 10.2 t)
-    motor_inertia=3.0,  # kg*m^2, motor rotor + coupling (assumed)
+    # kg*m^2, the rotor (4.88): the catalogue law of docs/drives.md, "Motor inertia"
+    motor_inertia=motor_rotor_inertia(150e3, 1000.0 * 2 * math.pi / 60),
     torque_limit=1.6,  # x rated motor torque: the drive's current limit (assumed)
 )
 
@@ -344,6 +347,7 @@ def guo_wang_conveyor(
     time_step_fraction: float = 0.5,
     start: Optional[str] = None,
     formulation: str = "node_kelvin_voigt",
+    control: str = "vfd",
 ) -> Scene:
     """Reference case G: Guo & Wang's DTII(A)10040 cement-plant conveyor (Guo & Wang 2020,
     Table 1; docs/reference-cases.md), started by a speed-controlled drive along ``start_curve``.
@@ -378,10 +382,18 @@ def guo_wang_conveyor(
       with the belt; contact 1e8 N/m with about half-critical damping for one node.
     - Material ``material`` kg/m (55.6) from a loading point 5 m from the tail centre to
       the head pulley's top, loaded at constant kg per metre of belt (a volumetric feeder).
-    - Drive: speed controlled along ``start_curve`` (default Harrison, 10 s to 2 m/s), with
-      a torque limit of 1.6 x the motor's rated torque at the drum (150 kW at 1000 rpm
-      through a gearbox of ratio 1000 rpm / (2 m/s / 0.4 m) = 20.9: 29.9 kN*m rated,
-      47.9 kN*m limit), motor inertia 3 kg*m^2 at the motor (1310 kg*m^2 at the drum).
+    - Drive: a variable-speed drive (``control="vfd"``, default): a PI speed controller
+      (:class:`beltrs.SpeedController` with its default gains, bandwidth 10 rad/s, tuned on
+      the whole conveyor's rigid-body inertia) following ``start_curve`` (default Harrison,
+      10 s to 2 m/s), with a torque limit of 1.6 x the motor's rated torque at the drum
+      (150 kW at 1000 rpm through a gearbox of ratio 1000 rpm / (2 m/s / 0.4 m) = 20.9:
+      29.9 kN*m rated, 47.9 kN*m limit) and the motor's rotor inertia 4.88 kg*m^2 at the
+      motor (2140 kg*m^2 at the drum; :func:`beltrs.conveyor.motor_rotor_inertia`, the
+      catalogue law of docs/drives.md, "Motor inertia"). ``control="ideal"``: the ideal
+      speed follower instead (the drum follows the curve exactly within the limit), with
+      the same inertia. ``drive_torque`` is the motor's air-gap torque through the gearbox
+      (docs/drives.md, "Which torque"); session 9's drive was the ideal follower with 3
+      kg*m^2 (assumed).
 
     Args:
         start_curve: the drive's starting curve. Its ``speed`` is the belt speed, m/s;
@@ -403,6 +415,8 @@ def guo_wang_conveyor(
             unstretched, to be relaxed with ``Simulation.stabilise``, as case G was first
             run). A design start places the spans on rolls in their static sag
             (``initial.sag``), for either formulation.
+        control: ``"vfd"`` (default, the PI speed controller) or ``"ideal"`` (the ideal
+            speed follower), as above.
         formulation: the belt model (:attr:`beltrs.Belt.formulation`):
             ``"node_kelvin_voigt"`` (default, Hustrulid's nodes) or ``"rigid_body"``
             (Guo & Wang's own rigid finite elements: bodies of the same length, mass
@@ -420,8 +434,12 @@ def guo_wang_conveyor(
     r = p["drum_radius"]
     ratio = p["motor_speed"] / (p["speed"] / r)
     rated = p["motor_power"] / p["motor_speed"] * ratio  # N*m at the drum
+    if control not in ("vfd", "ideal"):
+        raise SceneError(f"control = {control!r}: must be \"vfd\" (a PI speed controller) or \"ideal\" (the "
+                         "ideal speed follower)")
     drive = Drive(start_curve=start_curve, max_torque=p["torque_limit"] * rated,
-                  inertia=p["motor_inertia"] * ratio**2)
+                  inertia=p["motor_inertia"] * ratio**2,
+                  controller=SpeedController() if control == "vfd" else None)
     lagging = Friction(static=0.4, kinetic=0.35)
     pulleys = [
         Pulley(name="tail", center=(0.0, 0.0), radius=r, mass=500.0, inertia=0.8 * 500.0 * r * r,
