@@ -43,7 +43,7 @@ from beltrs.scenes import GUO_WANG, guo_wang_conveyor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from conveyor_300 import LENGTH, conveyor_300, measure, ripple_figures  # noqa: E402
+from conveyor_300 import LENGTH, conveyor_300, measure, ripple_figures, shaft_torque  # noqa: E402
 from ripple_drive import figures, lines, window_figures  # noqa: E402
 
 RAMP, STEADY, WINDOW, MARGIN = 4.0, 4.0, 2.0, 1.0  # tests/test_ripple.py
@@ -130,11 +130,8 @@ def main(argv=None) -> int:
         data = measure(sim, (290.0, 0.0), "head", ramp + a.steady + MARGIN)
     f = ripple_figures(data, WINDOW, margin=MARGIN)
     # the gearbox's output shaft: drive_torque - J i^2 domega/dt (docs/drives.md, "Which torque ...")
-    import numpy as np
-
     inertia = next(p.drive.inertia for p in scene.pulleys if p.drive is not None)
-    shaft = data["torque"] - inertia * np.gradient(data["speed"], data["time"])
-    fs = ripple_figures(dict(data, torque=shaft), WINDOW, margin=MARGIN)
+    fs = ripple_figures(dict(data, torque=shaft_torque(data, scene)), WINDOW, margin=MARGIN)
     f.update(drive_inertia=inertia, shaft_ripple=fs["torque_ripple"], shaft_mean=fs["torque_mean"],
              shaft_min=fs["torque_min"], shaft_max=fs["torque_max"])
     if a.save:

@@ -86,3 +86,15 @@ def ripple_figures(data: dict, window: float, cutoff: float = 2.0, margin: float
         "speed_mean": float(data["speed"][w].mean()),
         "tension_mean": float(data["tension"][w].mean()),
     }
+
+
+def shaft_torque(data: dict, scene: beltrs.Scene, pulley: str = "head"):
+    """The torque in the gearbox's output shaft of ``pulley``'s drive from a :func:`measure`
+    record: the drive's torque (the motor's air-gap torque through a lossless gearbox) less
+    what accelerates the rotor and coupling, J·i²·dω/dt with J·i² the drive's ``inertia``
+    reflected to the drum (docs/drives.md, "Which torque ..."), dω/dt by central differences
+    of the recorded drum speed. N·m, clockwise negative like ``drive_torque``."""
+    import numpy as np
+
+    inertia = scene.pulleys[scene.pulley_index(pulley)].drive.inertia
+    return data["torque"] - inertia * np.gradient(data["speed"], data["time"])
