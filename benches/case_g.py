@@ -82,15 +82,18 @@ def probe_chunks(sim: beltrs.Simulation, probes: list[tuple[float, float]], dura
 
 def start(shape: str, ramp: float, prestart: float, length: float, settle: float,
           progress: Callable[[dict[str, Any]], None] | None = None, contact: str = "nodes",
-          **scene_kw: Any) -> dict[str, Any]:
+          control: str = "ideal", **scene_kw: Any) -> dict[str, Any]:
     """One start from rest: build, stabilise, run the curve and ``settle`` s more.
     ``progress`` gets the run's figures so far (as returned, with ``duration`` the planned
     time) after each half second (`probe_chunks`); ``contact``: "nodes" pins nodal pulley
     contact (the tables of docs/case-g.md are the nodal contact's, session 8), "builder"
     keeps :func:`guo_wang_conveyor`'s defaults (wrap contact on drums and rolls for the node
-    belt); ``scene_kw`` go to :func:`guo_wang_conveyor`."""
+    belt); ``control``: the drive, "ideal" (the ideal speed follower: the tables of
+    docs/case-g.md, which predate the builder's VFD default of session 10) or "vfd"
+    (:func:`guo_wang_conveyor`'s default since then, docs/drives.md); ``scene_kw`` go to
+    :func:`guo_wang_conveyor`."""
     curve = beltrs.StartCurve(shape=shape, speed=GUO_WANG["speed"], ramp=ramp, prestart=prestart)
-    scene = guo_wang_conveyor(curve, length=length, **scene_kw)
+    scene = guo_wang_conveyor(curve, length=length, control=control, **scene_kw)
     if contact == "nodes":
         scene = replace(scene, belt=replace(scene.belt, pulley_contact="nodes"))
     elif contact != "builder":
@@ -114,7 +117,7 @@ def start(shape: str, ramp: float, prestart: float, length: float, settle: float
         run.update(nodes=sim.nodes, dt=sim.dt, stabilise_steps=rep["steps"], stabilise_wall=t1 - t0,
                    run_wall=time.perf_counter() - t1, duration=duration,
                    pulley_contact=scene.belt.pulley_contact, idler_contact=scene.belt.idler_contact,
-                   element_length=scene_kw.get("element_length", 0.2))
+                   element_length=scene_kw.get("element_length", 0.2), control=control)
         return run
 
     each = None if progress is None else (lambda data: progress(figures(data)))
@@ -232,6 +235,9 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--pulley-contact", choices=("nodes", "builder"), default="nodes",
                     help="with --formulations: 'nodes' pins nodal pulley contact (as the tables above it); "
                     "'builder' runs guo_wang_conveyor's defaults (wrap contact on drums and rolls for the node belt)")
+    ap.add_argument("--control", choices=("ideal", "vfd"), default="ideal",
+                    help="with --formulations: the drive, 'ideal' (the ideal speed follower, as every table of the "
+                    "page) or 'vfd' (guo_wang_conveyor's default since session 10: PI speed loop and motor rotor)")
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
     length = 200.0 if args.quick else GUO_WANG["length"]
@@ -246,7 +252,7 @@ def main(argv: list[str] | None = None) -> None:
             runs = formulation_study(args.formulations.split(","), args.curves.split(","),
                                      [float(x) for x in args.ramps.split(",")], length, args.settle, out,
                                      tuple(float(x) for x in args.prestarts.split(",")), args.pulley_contact,
-                                     args.element_length)
+                                     args.element_length, args.control)
             wall = time.perf_counter() - t0
         section = formulations_section(runs, length, wall, args.load or "load not given")
         write_section(out / "case-g.md", section)
@@ -387,11 +393,12 @@ FORMULATION_NAMES = {"node_kelvin_voigt": "node", "rigid_body": "rigid body"}
 
 def formulation_study(formulations: list[str], curves: list[str], ramps: list[float], length: float,
                       settle: float, out: pathlib.Path, prestarts: tuple[float, ...] = (0.0,),
-                      contact: str = "nodes", element_length: float = 0.2) -> list[dict[str, Any]]:
+                      contact: str = "nodes", element_length: float = 0.2,
+                      control: str = "ideal") -> list[dict[str, Any]]:
     """Each pre-start, ramp and curve with each formulation, in that order; prints each run
     (and its progress) and saves the series to ``out/case_g_formulations.npz`` and the figures
     to ``out/case_g_formulations.json`` as it goes, the run under way included. ``contact``:
-    as :func:`start`'s; ``element_length``: m, to :func:`guo_wang_conveyor`."""
+    and ``control`` as :func:`start`'s; ``element_length``: m, to :func:`guo_wang_conveyor`."""
     runs: list[dict[str, Any]] = []
 
     def dump(rs: list[dict[str, Any]]) -> None:
@@ -417,7 +424,7 @@ def formulation_study(formulations: list[str], curves: list[str], ramps: list[fl
                         dump(runs + [run])
 
                     run = start(shape, ramp, pre, length, settle, progress=partial, contact=contact,
-                                formulation=form, element_length=element_length)
+                                formulation=form, element_length=element_length, control=control)
                     label(run, form, True)
                     runs.append(run)
                     report(run, f"{FORMULATION_NAMES.get(form, form)} {shape}")
