@@ -20,7 +20,6 @@ mod recording_params;
 mod rigid_body;
 mod rkf45;
 mod roll_wrap;
-mod roll_wrap_weight;
 mod run_contract;
 mod scene_schema;
 mod speed_control;

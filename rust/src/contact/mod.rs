@@ -447,9 +447,6 @@ pub struct IdlerContact {
     /// Wrap contact ([`roll_wrap`]): the strain energy of the elements measured along their
     /// path over the roll less that at their chord, J (0 for the segment contact).
     pub strain: f64,
-    /// Wrap contact with the belt's weight along the path ([`roll_wrap::path_weight`]): the
-    /// wrapped elements' weight potential along their path less that at their nodes, J.
-    pub gravity: f64,
 }
 
 /// Inputs describing one idler.

@@ -25,21 +25,8 @@
 //! An element that a pulley or another roll has already measured along its path this
 //! evaluation (a roll within an element length of a drum or of another roll) keeps the
 //! centre-line segment contact on that roll: the path round two bodies is not measured.
-//!
-//! The belt's weight along the path ([`path_weight`], [`idler_wrap_contact_weighed`];
-//! session 10, **not used by the contact stage**): a wrapped element's weight spread along
-//! its tangent–arc–tangent path, its potential M·g·ȳ (ȳ the path's mean height), instead of
-//! half at each node. With the weight at the nodes the belt's potential Σ m·g·yᵢ over a
-//! sagged span depends on where the nodes lie relative to the roll (the chord of the element
-//! over the roll passes below the belt's kink there): steady running then drives a force at
-//! v/l from every roll, all in phase where the pitches are whole numbers of elements
-//! ("gravity cogging"). Weighed along the path the potential of a belt sliding over a roll is
-//! constant to the chords' own error (kernel tests, `rust/tests/roll_wrap_weight.rs`), and a
-//! chain dragged slowly over five rolls feels 7.7× less cogging; but in the running
-//! conveyor the torque line at v/l grew (case G 44 → 153 N·m), so the stage does not use it
-//! (docs/wrap-contact.md, "Session 10: the belt's weight along the wrapped path").
 
-use super::wrap::{self, ElementLaw, Wrap};
+use super::wrap::{self, ElementLaw};
 use super::{IdlerBody, IdlerContact};
 use nalgebra::Vector2;
 
@@ -143,43 +130,7 @@ pub fn idler_wrap_contact(
     stamp: u64,
     force: &mut [V2],
     tension: &mut [f64],
-    excess: Option<&mut Vec<(usize, f64)>>,
-) -> IdlerContact {
-    idler_wrap_contact_weighed(
-        element, x, v, body, law, claimed, stamp, force, tension, excess, None,
-    )
-}
-
-/// The belt's weight for [`idler_wrap_contact_weighed`]: the node masses (kg) and the
-/// gravitational acceleration (m/s², acting in −y) with which the axial pass weighs the
-/// nodes.
-#[derive(Debug, Clone, Copy)]
-pub struct Weight<'a> {
-    /// Mass of each node, kg.
-    pub node_mass: &'a [f64],
-    /// Gravitational acceleration, m/s².
-    pub gravity: f64,
-}
-
-/// [`idler_wrap_contact`] with the wrapped elements' weight moved from their nodes onto
-/// their path ([`path_weight`]) when `belt_weight` is given (the contact stage does not give
-/// it: see the module's documentation): each wrapped element gets the force −∂δV/∂x of
-/// δV = M·g·(ȳ − (y_p + y_q)/2) on its nodes (M the mean of its nodes' masses; the axial
-/// pass has already applied the nodal weights), and the roll takes its reaction. The
-/// contact's `gravity` is the sum of δV, J.
-#[allow(clippy::too_many_arguments)]
-pub fn idler_wrap_contact_weighed(
-    element: &mut usize,
-    x: &[V2],
-    v: &[V2],
-    body: &IdlerBody,
-    law: &ElementLaw,
-    claimed: &mut [u64],
-    stamp: u64,
-    force: &mut [V2],
-    tension: &mut [f64],
     mut excess: Option<&mut Vec<(usize, f64)>>,
-    belt_weight: Option<Weight>,
 ) -> IdlerContact {
     let n = x.len();
     let (e, near) = super::track_element(element, x, body);
@@ -249,15 +200,6 @@ pub fn idler_wrap_contact_weighed(
                 on_roll -= f;
             }
         }
-        if let Some(w) = belt_weight {
-            let mass = 0.5 * (w.node_mass[k] + w.node_mass[j]);
-            let (dv, grad_p, grad_q) = path_weight(&g, x[k], x[j], body.center, body.radius);
-            let (fp, fq) = (grad_p * (-mass * w.gravity), grad_q * (-mass * w.gravity));
-            force[k] += fp;
-            force[j] += fq;
-            on_roll -= fp + fq;
-            out.gravity += mass * w.gravity * dv;
-        }
         total -= on_roll;
         let w = on_roll.norm();
         weight += w;
@@ -292,45 +234,4 @@ pub fn idler_wrap_contact_weighed(
         out.normal_force = load;
     }
     out
-}
-
-/// The mean height of an element's wrapped path less that of its chord, ȳ − (y_p + y_q)/2
-/// (m), and its gradients with respect to the first node `p` and the second `q` (`g` the
-/// path of the element from `p` to `q` over the circle of centre `c` and radius `r`).
-/// Times the element's weight M·g it is the potential of the element's weight spread along
-/// its path, less that of the weight at its nodes (which the axial pass applies).
-///
-/// ȳ = I/L with I = ∫ y ds, the sum of t_p·(y_p + y_P)/2, r·φ·y_c, s·r²·(n_p,x − n_q,x)
-/// and t_q·(y_Q + y_q)/2 (P = c + r·n_p and Q = c + r·n_q the tangent points, s the path's
-/// sense round the centre). Because the path is smooth where the tangent meets the arc,
-/// ∂I/∂p is that of a straight piece from a fixed tangent point, ∂L/∂p·(y_p + y_P)/2 plus
-/// (t_p/2)·ŷ, and for a node inside the circle (taken at its radial projection P)
-/// ∂L/∂p·y_P; likewise for `q`. A straight path (the element just touching the circle)
-/// gives 0, so the correction is continuous as an element starts or stops touching; its
-/// gradient is not: the weight of the straight pieces, half of which goes to the point
-/// where they touch the circle, leaves the nodes at once, a step of up to M·g/2 in the
-/// nodes' forces (the roll takes it) as a chord starts to cut the circle.
-pub fn path_weight(g: &Wrap, p: V2, q: V2, c: V2, r: f64) -> (f64, V2, V2) {
-    let (yp, yq) = (c.y + r * g.normal_p.y, c.y + r * g.normal_q.y);
-    let integral = g.tangent_p * 0.5 * (p.y + yp)
-        + r * g.angle * c.y
-        + g.sense * r * r * (g.normal_p.x - g.normal_q.x)
-        + g.tangent_q * 0.5 * (yq + q.y);
-    let end = |grad: V2, tangent: f64, y: f64, y_tangent: f64| {
-        if tangent > 0.0 {
-            grad * (0.5 * (y + y_tangent)) + V2::new(0.0, 0.5 * tangent)
-        } else {
-            grad * y_tangent
-        }
-    };
-    let di_p = end(g.grad_p, g.tangent_p, p.y, yp);
-    let di_q = end(g.grad_q, g.tangent_q, q.y, yq);
-    let l = g.length;
-    let mean = integral / l;
-    let half = V2::new(0.0, 0.5);
-    (
-        mean - 0.5 * (p.y + q.y),
-        (di_p - g.grad_p * mean) / l - half,
-        (di_q - g.grad_q * mean) / l - half,
-    )
 }

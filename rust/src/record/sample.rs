@@ -86,10 +86,8 @@ impl Simulation {
         // deepest).
         for c in &sc.idler_contacts {
             e.contact += c.energy;
-            // Elements wrapped over a roll (contact::roll_wrap), as on a pulley above, and
-            // their weight along the path rather than at their nodes.
+            // Elements wrapped over a roll (contact::roll_wrap), as on a pulley above.
             e.strain += c.strain;
-            e.gravity += c.gravity;
         }
         e
     }
