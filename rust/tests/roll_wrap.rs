@@ -273,6 +273,22 @@ fn forces_are_continuous_as_the_chain_slides_over_the_roll() {
     );
 }
 
+/// The closed chain's element tensions on its nodes plus each node's weight `weight` (N,
+/// acting in −y): the axial pass of the chain runs below.
+fn weighed_chain_forces(x: &[V2], law: &ElementLaw, weight: f64) -> Vec<V2> {
+    let n = x.len();
+    let mut f = vec![V2::new(0.0, -weight); n];
+    for e in 0..n {
+        let j = (e + 1) % n;
+        let d = x[j] - x[e];
+        let len = d.norm();
+        let te = law.tension(e, len, 0.0);
+        f[e] += d * (te / len);
+        f[j] -= d * (te / len);
+    }
+    f
+}
+
 /// A chain of 20 kg nodes (0.2 m elements, 100 kg/m of belt and load) at 12 kN runs at
 /// `speed` m/s under gravity over five rolls of radius `radius` 1.2 m apart (their tops at
 /// 0, a turn of q·a/T ≈ 0.1 over each), its two ends driven along at that speed at the
@@ -331,15 +347,7 @@ fn run_over(radius: f64, speed: f64, damped: bool) -> Vec<f64> {
     let mut load = Vec::with_capacity(measure);
     for step in 0..settle + measure {
         let t = step as f64 * DT;
-        let mut f = vec![V2::new(0.0, -mass * g); n];
-        for e in 0..n {
-            let j = (e + 1) % n;
-            let d = x[j] - x[e];
-            let len = d.norm();
-            let te = law.tension(e, len, 0.0);
-            f[e] += d * (te / len);
-            f[j] -= d * (te / len);
-        }
+        let mut f = weighed_chain_forces(&x, &law, mass * g);
         for (k, body) in bodies.iter().enumerate() {
             let c = idler_wrap_contact(
                 &mut element[k],
@@ -448,15 +456,7 @@ fn node_on_circle(radius: f64, speed: f64, time: f64) -> f64 {
     let steps = (time / DT) as usize;
     for step in 0..steps {
         let t = (step + 1) as f64 * DT;
-        let mut f = vec![V2::new(0.0, -mass * g); N];
-        for e in 0..N {
-            let j = (e + 1) % N;
-            let d = x[j] - x[e];
-            let len = d.norm();
-            let te = law.tension(e, len, 0.0);
-            f[e] += d * (te / len);
-            f[j] -= d * (te / len);
-        }
+        let mut f = weighed_chain_forces(&x, &law, mass * g);
         idler_wrap_contact(
             &mut element,
             &x,
