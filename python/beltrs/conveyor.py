@@ -709,8 +709,10 @@ class Conveyor:
 
         * grip at every drive in a start: T2 ≥ F_A,i / (e^{µ·θ} − 1), with F_A,i the
           drive's share of the larger of DIN's starting force 1.5 · F_U and the rigid-belt
-          start force M_eq · a_max + F_U (:meth:`start_force`), µ the lagging's kinetic
-          coefficient and θ = π (a simple head or tail drum);
+          start force M_eq · a_max + F_U (:meth:`start_force`) less the motors' part of
+          M_eq (a rotor is accelerated through its own shaft, not through the drum's grip
+          on the belt), µ the lagging's kinetic coefficient and θ = π (a simple head or
+          tail drum);
         * sag between idlers: T ≥ (m'_G + m'_L) · g · a / (8 · h_rel) on the carry strand
           and m'_G · g · a_r / (8 · h_rel) on the return strand, h_rel = 1 % of the pitch;
 
@@ -722,7 +724,11 @@ class Conveyor:
         p = self.statics(takeup_tension=base)
         g = self.gravity
         grip = math.exp(self.lagging[1] * math.pi) - 1
-        starting = max(1.5 * p.effective, self.start_force())
+        from .din22101 import rigid_start_force
+
+        a_max = max(self._peak_acceleration(d) for d in self.drives)
+        grip_start = rigid_start_force(self._moving_mass_without_motors(), a_max, p.effective)
+        starting = max(1.5 * p.effective, grip_start)
         share = {d.location: d.share for d in self.drives}
         raise_by = 0.0
         for d in p.drives:
