@@ -95,27 +95,24 @@ def main(argv=None) -> int:
         return scene
 
     t0 = time.perf_counter()
+    ramp = 0.0 if a.start == "running" else a.ramp
+    running = {"start": "running"} if a.start == "running" else {}
     if a.which == "case_g":
         length = 150.0
         curve = beltrs.StartCurve(shape="harrison", speed=a.speed or GUO_WANG["speed"], ramp=a.ramp)
         kw = {} if a.element is None else {"element_length": a.element}
         kw["control"] = "vfd" if a.control == "vfd" else "ideal"
-        if a.start == "running":
-            scene = belt(guo_wang_conveyor(curve, length=length, start="running", **kw))
-        else:
-            scene = belt(guo_wang_conveyor(curve, length=length, **kw))
+        scene = belt(guo_wang_conveyor(curve, length=length, **running, **kw))
         if a.control == "ideal0":
             scene = replace(scene, pulleys=[replace(p, drive=replace(p.drive, inertia=0.0)) if p.drive is not None
                                             else p for p in scene.pulleys])
         sim = beltrs.Simulation(scene)
         if a.start != "running":
             sim.stabilise(tolerance=1e-5, max_steps=400_000)
-        ramp = 0.0 if a.start == "running" else a.ramp
         data = measure(sim, (length - 10.0, GUO_WANG["drum_radius"]), "head", ramp + a.steady + MARGIN)
     else:
         kw = {} if a.element is None else {"element_length": a.element}
-        if a.start == "running":
-            kw["start"] = "running"
+        kw.update(running)
         if a.speed is None:
             c = conveyor_300(ramp=a.ramp, **kw)
         else:
@@ -126,7 +123,6 @@ def main(argv=None) -> int:
                             inertia=0.0 if a.control == "ideal0" else d.inertia) for d in c.drives]
         scene = belt(c.scene())
         sim = beltrs.Simulation(scene)
-        ramp = 0.0 if a.start == "running" else a.ramp
         data = measure(sim, (290.0, 0.0), "head", ramp + a.steady + MARGIN)
     f = ripple_figures(data, WINDOW, margin=MARGIN)
     # the gearbox's output shaft: drive_torque - J i^2 domega/dt (docs/drives.md, "Which torque ...")
@@ -143,8 +139,7 @@ def main(argv=None) -> int:
              loss_frequency=a.loss_frequency, raw_over_low=f["raw_peak"] / f["low_peak"] - 1,
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
              wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, control=a.control,
-             start=a.start, ramp=a.ramp,
-             steady=a.steady,
+             start=a.start, ramp=a.ramp, steady=a.steady,
              element=a.element, speed=a.speed, nodes=sim.nodes)
     if a.windows:
         f.update(windows=window_figures(data["time"], data["torque"], a.windows),

@@ -187,6 +187,15 @@ def _return_default() -> IdlerSet:
 LOCATIONS = ("head", "tail")
 CONTROLS = ("vfd", "ideal")
 
+
+def check_control(where: str, control: object) -> str:
+    """``control`` if it names a drive's control (:data:`CONTROLS`), else a SceneError
+    naming ``where``, the value and the rule."""
+    if control not in CONTROLS:
+        raise SceneError(f"{where} = {control!r}: must be \"vfd\" (a PI speed controller with the motor's "
+                         "inertia) or \"ideal\" (the ideal speed follower)")
+    return control
+
 #: The catalogue law of :func:`motor_rotor_inertia`: J = MOTOR_INERTIA_COEFF · T_r^MOTOR_INERTIA_EXP
 #: (kg·m², T_r the rated torque in N·m), a least-squares fit in log-log of 19 IEC
 #: low-voltage cage motors, 0.75-22 kW, 2 and 4 poles (docs/drives.md, "Motor inertia").
@@ -277,9 +286,7 @@ class DriveSpec:
         if self.inertia is not None:
             check(f"{where}.inertia", self.inertia, unit="kg*m^2")
         check(f"{where}.motor_speed", self.motor_speed, positive=True, unit="rad/s")
-        if self.control not in CONTROLS:
-            raise SceneError(f"{where}.control = {self.control!r}: must be \"vfd\" (a PI speed controller with the "
-                             "motor's inertia) or \"ideal\" (the ideal speed follower)")
+        check_control(f"{where}.control", self.control)
         if self.control == "ideal" and self.controller is not None:
             raise SceneError(f"{where}.control = \"ideal\": the ideal speed follower has no controller; leave "
                              "controller out, or use control = \"vfd\"")
@@ -724,11 +731,7 @@ class Conveyor:
         p = self.statics(takeup_tension=base)
         g = self.gravity
         grip = math.exp(self.lagging[1] * math.pi) - 1
-        from .din22101 import rigid_start_force
-
-        a_max = max(self._peak_acceleration(d) for d in self.drives)
-        grip_start = rigid_start_force(self._moving_mass_without_motors(), a_max, p.effective)
-        starting = max(1.5 * p.effective, grip_start)
+        starting = max(1.5 * p.effective, self._rigid_start(self._moving_mass_without_motors(), p.effective))
         share = {d.location: d.share for d in self.drives}
         raise_by = 0.0
         for d in p.drives:
@@ -1025,15 +1028,11 @@ class Conveyor:
                 given[d.location] = float(d.power)
         if len(given) == len(self.drives):
             return given
-        from .din22101 import rigid_start_force
-
         running = self._running_force()
-        a_max = max(self._peak_acceleration(d) for d in self.drives)
         base = self._moving_mass_without_motors()
         powers = {d.location: given.get(d.location, 0.0) for d in self.drives}
         for _ in range(50):
-            mass = base + self._motors_mass(powers)
-            start = rigid_start_force(mass, a_max, running)
+            start = self._rigid_start(base + self._motors_mass(powers), running)
             new = dict(given)
             for d in self.drives:
                 if d.location not in given:
@@ -1088,10 +1087,15 @@ class Conveyor:
         """Peak drive force of a rigid-belt start along the drives' curves, N:
         M_eq · a_max + F_U (:func:`beltrs.din22101.rigid_start_force`), a_max the largest
         acceleration of any drive's start curve."""
+        return self._rigid_start(self.moving_mass(), self._running_force())
+
+    def _rigid_start(self, mass: float, running: float) -> float:
+        """``mass`` (kg) accelerated at the steepest drive curve's a_max against ``running``
+        (N): :func:`beltrs.din22101.rigid_start_force`, N."""
         from .din22101 import rigid_start_force
 
         a_max = max(self._peak_acceleration(d) for d in self.drives)
-        return rigid_start_force(self.moving_mass(), a_max, self._running_force())
+        return rigid_start_force(mass, a_max, running)
 
     def _running_force(self) -> float:
         """DIN 22101's F_U, N (independent of the takeup tension)."""

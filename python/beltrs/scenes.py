@@ -8,7 +8,7 @@ from typing import Any, Optional
 
 from . import _beltrs, din22101
 from ._beltrs import SceneError
-from .conveyor import motor_rotor_inertia
+from .conveyor import check_control, motor_rotor_inertia
 from .scene import (
     Belt,
     Drive,
@@ -434,9 +434,7 @@ def guo_wang_conveyor(
     r = p["drum_radius"]
     ratio = p["motor_speed"] / (p["speed"] / r)
     rated = p["motor_power"] / p["motor_speed"] * ratio  # N*m at the drum
-    if control not in ("vfd", "ideal"):
-        raise SceneError(f"control = {control!r}: must be \"vfd\" (a PI speed controller) or \"ideal\" (the "
-                         "ideal speed follower)")
+    check_control("control", control)
     drive = Drive(start_curve=start_curve, max_torque=p["torque_limit"] * rated,
                   inertia=p["motor_inertia"] * ratio**2,
                   controller=SpeedController() if control == "vfd" else None)
