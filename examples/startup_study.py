@@ -75,26 +75,29 @@ def design(cfg: dict) -> tuple[float, float, beltrs.statics.TensionProfile]:
     return ref.takeup_tension(), ref.motor_power("head"), ref.statics()
 
 
-def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float) -> beltrs.Scene:
+def build(cfg: dict, curve: beltrs.StartCurve, tension: float, power: float, control: str = "ideal") -> beltrs.Scene:
     """The study's conveyor started along ``curve`` (examples/startup_study.toml is the
     full-size one with the first curve). The drive is the ideal speed follower
     (``control="ideal"``, not the builder's default VFD): the study compares the curves
-    themselves, each followed exactly within the torque limit."""
+    themselves, each followed exactly within the torque limit. ``control="vfd"`` (the
+    ``--control vfd`` option) runs the builder's default drive instead."""
     c = Conveyor(profile=[(0.0, 0.0), (cfg["length"], 0.0)], belt=cfg["belt"], capacity=cfg["capacity"],
-                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power, control="ideal")],
+                 speed=cfg["speed"], drives=[DriveSpec("head", start_curve=curve, power=power, control=control)],
                  takeup=TakeupSpec("tail", tension=tension))
     return c.scene()
 
 
-def study(cfg: dict, out=sys.stdout, part: tuple[int, int] = (1, 1)) -> list[dict]:
+def study(cfg: dict, out=sys.stdout, part: tuple[int, int] = (1, 1), control: str = "ideal") -> list[dict]:
     """Run the study's cases (``part`` = (k, n): only every n-th case from the k-th, to
-    spread the full study over n processes; the table rows keep the study's order)."""
+    spread the full study over n processes; the table rows keep the study's order) with the
+    drive ``control`` (:func:`build`)."""
     k, n = part
     cases = curves(cfg)[k - 1::n]
     tension, power, din = design(cfg)
     print(f"# Start-up study: {cfg['length']:g} m, {cfg['belt']}, {cfg['capacity']:g} t/h at {cfg['speed']:g} m/s; "
           f"takeup {tension / 1e3:g} kN per strand, motor {power / 1e3:g} kW; DIN 22101 T1 = "
-          f"{din.drive('head').tight / 1e3:.1f} kN, T2 = {din.drive('head').slack / 1e3:.1f} kN\n", file=out)
+          f"{din.drive('head').tight / 1e3:.1f} kN, T2 = {din.drive('head').slack / 1e3:.1f} kN"
+          + ("" if control == "ideal" else f"; drive control = {control!r}") + "\n", file=out)
 
     rows = []
     lead = cfg["lead"]
@@ -105,7 +108,7 @@ def study(cfg: dict, out=sys.stdout, part: tuple[int, int] = (1, 1)) -> list[dic
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|", file=out, flush=True)
     for curve in cases:
         curve = replace(curve, start=lead)  # a short settle at rest first (the spans' sag)
-        scene = build(cfg, curve, tension, power)
+        scene = build(cfg, curve, tension, power, control)
         head = scene.pulley_index("head")
         tail = scene.pulley_index("tail")
         r = scene.pulleys[head].radius
@@ -145,6 +148,9 @@ def main(argv=None) -> int:
     parser.add_argument("--write-scene", metavar="PATH", help="write the full study's first scene to PATH and stop")
     parser.add_argument("--part", metavar="K/N", default="1/1",
                         help="run every N-th case from the K-th (spread the study over N processes)")
+    parser.add_argument("--control", choices=("ideal", "vfd"), default="ideal",
+                        help="the drive: 'ideal' (the study's: the ideal speed follower) or 'vfd' (the builder's "
+                        "default: PI speed loop with the motor's rotor)")
     args = parser.parse_args(argv)
     try:
         k, n = (int(v) for v in args.part.split("/"))
@@ -156,7 +162,7 @@ def main(argv=None) -> int:
         tension, power, _ = design(FULL)
         build(FULL, curves(FULL)[0], tension, power).save(args.write_scene)
         return 0
-    study(QUICK if args.quick else FULL, part=(k, n))
+    study(QUICK if args.quick else FULL, part=(k, n), control=args.control)
     return 0
 
 

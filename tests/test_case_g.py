@@ -18,25 +18,31 @@ INTERVAL = 0.005  # s
 PROBES = [(LENGTH - 10.0, R), (LENGTH - 10.0, -R)]  # 10 m before / after the head drum
 
 
-def start(**kw):
-    # The ideal speed follower (control="ideal"; the builder's default since session 10 is the
-    # VFD, a PI speed loop with the motor's inertia): these tests check the belt against DIN
-    # 22101 and CEMA's rigid-body law with the drum held exactly on the start curve, as the
-    # laws assume. The VFD on this scene: tests/test_ripple.py, docs/drives.md.
+def start(control, **kw):
     curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
-    sim = beltrs.Simulation(guo_wang_conveyor(curve, length=LENGTH, control="ideal", **kw))
+    sim = beltrs.Simulation(guo_wang_conveyor(curve, length=LENGTH, control=control, **kw))
     sim.stabilise(tolerance=1e-5, max_steps=400_000)
     return sim, probe_run(sim, PROBES, RAMP + SETTLE, INTERVAL)
 
 
-@pytest.fixture(scope="module")
-def loaded():
-    return start()
+# Both drives, with the same laws: the builder's default since session 10, the VFD (a PI
+# speed loop, the motor's rotor on the drum: 4.88 kg·m² through the gearbox, 2139 kg·m² at
+# the drum), and the ideal speed follower (control="ideal"), which holds the drum exactly on
+# the start curve. DIN 22101's steady running and CEMA's momentum law do not depend on what
+# turns the drum; the VFD on this scene beyond them: tests/test_ripple.py, docs/drives.md.
+@pytest.fixture(scope="module", params=["vfd", "ideal"])
+def control(request):
+    return request.param
 
 
 @pytest.fixture(scope="module")
-def bare():
-    return start(f=0.0, material=0.0)
+def loaded(control):
+    return start(control)
+
+
+@pytest.fixture(scope="module")
+def bare(control):
+    return start(control, f=0.0, material=0.0)
 
 
 def steady(data):
@@ -56,15 +62,17 @@ def test_steady_running_matches_din_22101(loaded, bare):
     assert t2 == pytest.approx(d2, rel=0.015)
     # The peripheral force: what the resistances and the loading add over the bare conveyor
     # (f = 0, no material: the node model's own loss, belt nodes slipping as the polygonal
-    # belt lands on the drums, ~0.25 kN here) is DIN's F_U (less the 2 x 10 m outside the
+    # belt lands on the drums, ~0.2 kN here) is DIN's F_U (less the 2 x 10 m outside the
     # probes). 3 %: "a few per cent" of reference-cases.md, with the ripple's window mean.
+    # Measured (session 11): VFD T1 +0.35 %, T2 +0.01 %, F_U −0.40 %, bare loss 194 N;
+    # ideal follower T1 +0.43 %, T2 +0.05 %, F_U +0.37 %, bare loss 189 N.
     expected = din.resistances.total - (din.carry_per_metre + din.return_per_metre) * 10.0
     assert (t1 - t2) - (b1 - b2) == pytest.approx(expected, rel=0.03)
     # And the bare loss is small next to the resistances (< 15 % at 150 m; ~1 % at 972 m).
     assert 0 < b1 - b2 < 0.15 * expected
 
 
-def test_start_follows_the_rigid_body_law(loaded):
+def test_start_follows_the_rigid_body_law(loaded, control):
     """CEMA: F = M_eq * a. Integrated over the ramp this is the momentum law: the mean of
     T1 − (its static part) over the ramp equals M_carry * v0 / T. (Instant by instant the
     tension also carries the lightly damped takeup and strand modes, 1.6 Hz and up, excited
@@ -87,7 +95,17 @@ def test_start_follows_the_rigid_body_law(loaded):
     # 5 %: the modes' residue over ~6 periods (windows shifted by 0.2-0.5 s move the ratio by
     # 2 %). Leaving out the rolls' inertia would be 14 % off, the material 60 %.
     assert measured == pytest.approx(rigid, rel=0.05)
-    # The drive stayed within its torque limit: after the ramp the drum turns at the
-    # curve's speed exactly (a limited drive would lag).
+    # Measured (session 11): VFD −0.56 %, ideal follower −0.06 %. The rotor is not in
+    # m_carry: T1 before the head drum carries the belt's acceleration, not the drum's.
+    # The drive stayed within its torque limit (a limited drive would fall behind the curve
+    # and lag after the ramp): the ideal follower turns at the curve's speed exactly after
+    # the ramp; the VFD follows the curve within its tracking error (the rigid loop's lag
+    # j/ω_c² = 6 mm/s at the Harrison start's jerk, plus the belt's elastic answer: measured
+    # 10.5 mm/s at worst, at 0.48 s) and after the ramp within the PI's band (0.5 %, as
+    # tests/test_conveyor.py's; measured 0.056 % from 0.5 s after it).
     drum = -data["pulley_speed"][:, sim.scene.pulley_index("head")] * R
-    np.testing.assert_allclose(drum[t > RAMP + 0.5], p["speed"], rtol=1e-9)
+    if control == "ideal":
+        np.testing.assert_allclose(drum[t > RAMP + 0.5], p["speed"], rtol=1e-9)
+    else:
+        assert np.abs(drum - curve.speed_at(t)).max() < 0.02  # m/s, 1 % of the speed
+        np.testing.assert_allclose(drum[t > RAMP + 0.5], p["speed"], rtol=5e-3)

@@ -55,6 +55,35 @@ def test_catalogue_law_is_the_fit_of_its_table():
     assert GUO_WANG["motor_inertia"] == motor_rotor_inertia(150e3, 1000 * RPM)
 
 
+# A check on data the law was not fitted to, reaching the conveyor range: the rotor inertias
+# of MATLAB/Simscape's preset induction machines for 400 V 50 Hz, 4 poles, as the Modelica
+# Buildings library transcribes them (lbl-srg/modelica-buildings, commit 161fa25,
+# Buildings/Electrical/AC/ThreePhasesBalanced/Loads/MotorDrive/InductionMotors/Data/
+# IM_<hp>HP_400V_50Hz.mo: "the record of parameters for Induction Machine models from
+# MATLAB"). (rated power in hp, J kg*m^2). Generic parameter sets, not one maker's catalogue;
+# the records give no rated speed: taken as the synchronous 1500 rpm (a slip of 1-3 % moves
+# the law's J by 1.4-4 %, see docs/drives.md).
+PRESETS_400V_50HZ = [(5, 0.0131), (10, 0.0343), (20, 0.102), (50, 0.37), (100, 1.25), (150, 2.3), (200, 2.9)]
+
+
+def test_catalogue_law_against_the_matlab_presets():
+    """The law against the 7 preset machines (3.7-149 kW, 24-950 N*m; docs/drives.md, "The
+    law against large motors"): no worse than on its own catalogue points (log rms 0.278):
+    measured 0.192 over all 7, 0.143 over the four of 37-149 kW (the conveyor range starts
+    there), each of those within 25 % (measured +11, -14, -19, -4 %)."""
+    hp = 745.7  # W
+    law = np.array([motor_rotor_inertia(k * hp, 1500 * RPM) for k, _ in PRESETS_400V_50HZ])
+    j = np.array([x for _, x in PRESETS_400V_50HZ])
+    err = np.log(law / j)
+    assert float(np.sqrt(np.mean(err**2))) < 0.278
+    big = np.array([k * hp >= 37e3 for k, _ in PRESETS_400V_50HZ])
+    assert big.sum() == 4
+    assert float(np.sqrt(np.mean(err[big] ** 2))) < 0.278
+    assert np.all(np.abs(law[big] / j[big] - 1) < 0.25), law / j - 1
+    # the 150 kW (200 hp) machine: 2.77 against 2.9 kg*m^2
+    assert law[-1] == pytest.approx(2.77, abs=0.005)
+
+
 def test_builder_default_is_a_pi_drive_with_the_laws_inertia():
     c = conveyor()
     d = head_drive(c)
