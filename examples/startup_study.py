@@ -7,6 +7,8 @@ belt tension, peak acceleration, takeup travel and drive power.
                                                 # 3 s pre-start: 16 runs, about an hour on one core
     python examples/startup_study.py --quick    # 40 m EP630/4 belt, ramps 1 s and 3 s, 0.3 s pre-start:
                                                 # the same study in seconds (a smoke test of the script)
+    python examples/startup_study.py --control vfd  # the builder's default drive (PI speed loop with the
+                                                # motor's rotor) instead of the ideal speed follower
 
 examples/startup_study.toml is the full-size conveyor's scene with the first curve
 (``--write-scene`` writes it; a test checks that it equals what this script builds).
