@@ -68,9 +68,9 @@ def conveyor_idler_contact(formulation: str) -> str:
     the rolls on a held belt; docs/wrap-contact.md, "Roll wrap as the builders' default"),
     ``"segment"`` for the rigid-body belt (the engine refuses roll wrap with it). Costs
     1.6-1.8x the wall time of the segment contact (``benches/roll_wrap_cost.py``). Range:
-    clean to 3 m/s (its circle grows with the belt speed, ``max(R, 3 l, min(1.4 v^2/g,
-    20 l))``); at 4-8 m/s the rolls still unload at the node-passing rate
-    (docs/wrap-contact.md, "Session 10: roll wrap at speed")."""
+    clean at 2-8 m/s (its circle grows with the belt speed, ``max(R, 3 l, min(1.4 v^2/g,
+    20 l))``, and its tangent-line damping is limited at speed; docs/wrap-contact.md,
+    "Session 10: roll wrap at speed" and "Session 11: the tangent-line damping at speed")."""
     return "segment" if formulation == "rigid_body" else "wrap"
 
 

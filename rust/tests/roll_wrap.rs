@@ -527,3 +527,123 @@ fn the_wrap_radius_law() {
     assert_eq!(wrap_radius(r, 0.2, 6.0, 0.0), ARC_SPREAD * 0.2);
     assert_eq!(wrap_radius(r, 0.2, -4.0, g), wrap_radius(r, 0.2, 4.0, g));
 }
+
+/// A node `p` approaching a roll along its sagged chain at `speed`, the element beyond it
+/// wrapped over the roll to `q`: the element before `p` flatter than the wrapped piece by
+/// the node's kink 2α, `p` moving along their bisector (its locus in steady running), the
+/// chain at 12 kN, every other node at rest. Returns (the damping's force on `p`: its force
+/// with the roll's contact damping `c` less that without, the approach across the piece's
+/// line, the speed along it).
+fn steady_approach(alpha: f64, speed: f64, c: f64) -> (V2, f64, f64) {
+    let (l, t) = (0.2, 12e3);
+    let beta: f64 = 0.05; // the piece's slope where it meets the roll
+    let rot = |a: V2, th: f64| {
+        V2::new(
+            a.x * th.cos() - a.y * th.sin(),
+            a.x * th.sin() + a.y * th.cos(),
+        )
+    };
+    let centre = V2::new(0.0, -R);
+    let d = V2::new(beta.cos(), beta.sin());
+    let p = centre + V2::new(-beta.sin(), beta.cos()) * R - d * 0.1;
+    let d2 = V2::new(beta.cos(), -beta.sin());
+    let q = centre + V2::new(beta.sin(), beta.cos()) * R + d2 * 0.1;
+    let e = rot(d, -2.0 * alpha);
+    let x = vec![
+        p - e * (2.0 * l),
+        p - e * l,
+        p,
+        q,
+        q + d2 * l,
+        q + d2 * (2.0 * l),
+    ];
+    let n = x.len();
+    let mut v = vec![V2::zeros(); n];
+    v[2] = rot(d, -alpha) * speed;
+    let mut chain = Chain::new(n, l);
+    for k in 0..n {
+        let len = match k {
+            2 => wrap(x[2], x[3], centre, R).unwrap().length,
+            _ => (x[(k + 1) % n] - x[k]).norm(),
+        };
+        chain.rest[k] = len - t / K;
+    }
+    chain.rest[n - 1] = 1e3; // the closing element, slack
+    let law = chain.law();
+    let run = |damping: f64| {
+        let body = IdlerBody {
+            center: centre,
+            radius: R,
+            stiffness: KC,
+            damping,
+        };
+        let mut f = vec![V2::zeros(); n];
+        let mut tension = vec![0.0; n];
+        let mut claimed = vec![0u64; n];
+        let mut element = 2;
+        idler_wrap_contact(
+            &mut element,
+            &x,
+            &v,
+            &body,
+            &law,
+            &mut claimed,
+            1,
+            &mut f,
+            &mut tension,
+            None,
+        );
+        assert!((tension[2] - t).abs() < 1e-6 * t, "{}", tension[2]);
+        f[2]
+    };
+    (run(c) - run(0.0), speed * alpha.sin(), speed * alpha.cos())
+}
+
+#[test]
+fn the_tangent_line_damping_on_a_node_running_along_its_chain() {
+    // A 20 kg node kinked by its weight (m·g = 2·α·T) approaching a roll along its locus
+    // crosses the wrapped piece's line at v·sin α though the belt does not approach the
+    // roll. With the roll's damping c (half critical, 44.7e3 N·s/m) the damper's steady
+    // force would be c·v·α, in the node's weights c·v/(2T) (T = 12 kN): 0.93 at 0.5 m/s,
+    // 3.7 at 2, 9.3 at 5, 14.9 at 8 m/s. Limited (`tangent_damping`) it is c·v·α while
+    // that stays below η·m·g and η·m·g above, whatever the speed.
+    use beltrs::contact::roll_wrap::{tangent_damping, TANGENT_DAMPING_WEIGHTS};
+    let (c, t) = ((KC * 20.0).sqrt(), 12e3);
+    let weight = 20.0 * 9.81;
+    let alpha = weight / (2.0 * t);
+    for speed in [0.5, 2.0, 5.0, 8.0] {
+        let (f, approach, along) = steady_approach(alpha, speed, c);
+        let expected = tangent_damping(c, t, along) * approach;
+        assert!(
+            (f.norm() - expected).abs() < 1e-9 * expected,
+            "{speed} m/s: {} against {expected}",
+            f.norm()
+        );
+        let free = c * approach; // the roll's damping as it is
+        println!(
+            "{speed} m/s: steady force {:.1} N = {:.3} node weights (unlimited {:.1} N)",
+            f.norm(),
+            f.norm() / weight,
+            free
+        );
+        if c * speed / (2.0 * t) <= TANGENT_DAMPING_WEIGHTS {
+            assert!((f.norm() - free).abs() < 1e-9 * free, "below the limit: c");
+        } else {
+            // η·m·g, within cos α (the speed along the piece) and sin α/α: 1e-4 here
+            assert!(
+                (f.norm() / weight - TANGENT_DAMPING_WEIGHTS).abs()
+                    < 1e-4 * TANGENT_DAMPING_WEIGHTS,
+                "{}",
+                f.norm() / weight
+            );
+        }
+    }
+    // At rest (a real approach, the belt stopped) or without tension: the roll's damping.
+    assert_eq!(tangent_damping(c, t, 0.0), c);
+    assert_eq!(tangent_damping(c, 0.0, 5.0), c);
+    assert_eq!(tangent_damping(c, t, -5.0), tangent_damping(c, t, 5.0));
+    assert_eq!(
+        tangent_damping(c, t, 5.0),
+        2.0 * TANGENT_DAMPING_WEIGHTS * t / 5.0
+    );
+}

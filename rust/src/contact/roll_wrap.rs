@@ -54,6 +54,42 @@ pub const FLIGHT_MARGIN: f64 = 1.4;
 /// at 6 m/s, k = 1.4 at 8 m/s) and ran at 7.0 m; capped at 20·l it runs at 8 m/s.
 pub const ARC_SPREAD_MAX: f64 = 20.0;
 
+/// Largest steady force of the wrap contact's tangent-line damping on a node, in the node's
+/// weights: [`tangent_damping`]. Chosen by measurement (docs/wrap-contact.md, "Session 11:
+/// the tangent-line damping at speed"): on the 50 m builder conveyor (carry rolls 1.2 m
+/// apart, return rolls 3 m) no roll unloads at 2–8 m/s at 1.4 (nor 1.43); at 2.0 the
+/// rolls unload at 6 m/s (1.3 % of the roll samples), at 2.9 at 6 and 8 m/s (8.5, 13.4 %);
+/// case G (2 m/s, 50 kN: c·v/(2T) = 0.99) is unchanged above 1, and at 0.86 its 10 Hz
+/// line rises (ripple 0.084 → 0.106 with the ideal follower).
+pub const TANGENT_DAMPING_WEIGHTS: f64 = 1.4;
+
+/// Damping coefficient (N·s/m) of the wrap contact's tangent-line damping on a node moving
+/// along the belt at `speed` (m/s) in an element at tension `tension` (N), on a roll of
+/// contact damping `damping` (N·s/m): `min(c, 2·η·T/|v|)`, η =
+/// [`TANGENT_DAMPING_WEIGHTS`]; `c` at rest or without tension.
+///
+/// Why: a lumped node in the span is kinked by its weight, Δθ = m·g/T, and travels along
+/// its locus, which bisects the kink; the wrapped piece beside the roll is the kink's
+/// downstream side, so the node approaching the roll crosses the piece's line at
+/// v·m·g/(2T) in steady running, though the belt does not approach the roll at all. The
+/// damper, on only while a node approaches, is switched on at each node passing (v/l) with
+/// the steady force F_s = c·v·m·g/(2T): in the node's weights, F_s/(m·g) = c·v/(2T),
+/// whatever the element's length, the belt's mass and the roll pitch (against the roll's
+/// load, l/a times that). It is the lumping's (the kink vanishes with l: F_s → 0 with the
+/// node's weight), grows with the speed and falls with the tension. On the 50 m builder
+/// conveyor it reads 2.9 (carry) at 2 m/s and 8.1 at 5 m/s, where the rolls unloaded at
+/// the passings; case G reads 0.99. The coefficient is limited so that F_s ≤ η·m·g: the
+/// damping of a real approach stays c where the steady part is small (low speed, high
+/// tension) and falls as T/v above.
+pub fn tangent_damping(damping: f64, tension: f64, speed: f64) -> f64 {
+    let v = speed.abs();
+    if v > 0.0 && tension > 0.0 {
+        damping.min(2.0 * TANGENT_DAMPING_WEIGHTS * tension / v)
+    } else {
+        damping
+    }
+}
+
 /// Radius (m) of the circle the belt's path over a roll of `radius` (m) is measured on, for
 /// elements of rest length `element` (m), a belt running at up to `speed` (m/s,
 /// [`scene_speed`]) under `gravity` (m/s²):
@@ -183,7 +219,8 @@ pub fn idler_wrap_contact(
             excess.push((k, g.length - chord));
         }
         // The roll's contact damping on a node moving towards the roll across its tangent
-        // line (never pulling): zero in steady running, where the nodes move along the path.
+        // line (never pulling), its coefficient limited at speed (`tangent_damping`): in
+        // steady running the node approaching the roll crosses the line at v·m·g/(2T).
         let mut on_roll = on_roll;
         for (i, grad, tangent) in [(k, g.grad_p, g.tangent_p), (j, g.grad_q, g.tangent_q)] {
             if tangent <= 0.0 || body.damping == 0.0 {
@@ -195,7 +232,8 @@ pub fn idler_wrap_contact(
             }
             let approach = -v[i].dot(&u);
             if approach > 0.0 {
-                let f = u * (body.damping * approach);
+                let c = tangent_damping(body.damping, t, v[i].dot(&grad));
+                let f = u * (c * approach);
                 force[i] += f;
                 on_roll -= f;
             }
