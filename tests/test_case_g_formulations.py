@@ -135,12 +135,13 @@ def test_bad_formulation_input_is_refused_by_name():
     # in their sag as the node belt's (initial.sag, the builders' default); bad input named.
     scene = guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
     assert scene.initial is not None and scene.initial.sag
-    assert scene.belt.pulley_contact == "nodes"  # the engine refuses wrap contact with rigid bodies
+    assert scene.belt.pulley_contact == "nodes"  # wrap joints are opt-in (docs/kubas.md)
     with pytest.raises(beltrs.SceneError, match=r"initial\.sag"):
         beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag="yes")))
-    # The node belt's scene switched to rigid bodies by hand: its wrap contact is refused by name.
+    # The node belt's scene switched to rigid bodies by hand: its roll wrap is refused by name
+    # (its drums' wrap contact means wrap joints for rigid bodies).
     node = guo_wang_conveyor(length=LENGTH, start="rest")
-    with pytest.raises(beltrs.SceneError, match="pulley_contact"):
+    with pytest.raises(beltrs.SceneError, match="idler_contact"):
         beltrs.Simulation(replace(node, belt=replace(node.belt, formulation="rigid_body")))
     # The builder: a known formulation; rigid bodies start from the design state too.
     from beltrs.conveyor import Conveyor
