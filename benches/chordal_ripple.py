@@ -13,6 +13,7 @@ the filter's end effect after), its rms and largest value, N, and its five stron
     python benches/chordal_ripple.py rigid_body --element 0.1      # shorter bodies
     python benches/chordal_ripple.py rigid_body --drums-alone      # no gravity, no material
     python benches/chordal_ripple.py node_kelvin_voigt --drums nodes --drums-alone
+    python benches/chordal_ripple.py rigid_body --drums wrap       # the rigid belt's wrap joints
 
 About 30-130 s of wall each at 100 m (one thread).
 """
@@ -68,7 +69,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--duration", type=float, default=3.0, help="s run (default 3)")
     ap.add_argument("--interval", type=float, default=0.001, help="s between readings (default 0.001)")
     ap.add_argument("--element", type=float, default=0.2, help="element (body) length, m (default 0.2)")
-    ap.add_argument("--drums", choices=("nodes", "wrap"), help="node belt's drum contact (default: builder's)")
+    ap.add_argument("--drums", choices=("nodes", "wrap"),
+                    help="drum contact (default: builder's); wrap with rigid_body: wrap joints")
     ap.add_argument("--rolls", choices=("segment", "wrap"), help="node belt's roll contact (default: builder's)")
     ap.add_argument("--drums-alone", action="store_true",
                     help="no gravity and no material (the rolls carry nothing), a winch takeup")

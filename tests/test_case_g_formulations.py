@@ -114,18 +114,39 @@ def test_start_peak_agrees_between_formulations(runs):
 # 0.4 m drums at v/l = 10 Hz (a chain on a sprocket: the strand meets the drum at a joint
 # on the corners' circle, speed ripple 1 - cos(a/2), a = l/R). It scales as l²: on a 100 m
 # case G running at 2 m/s, T1's ripple above 2 Hz is 3.74 kN rms with 0.2 m bodies and
-# 0.93 kN with 0.1 m (docs/case-g.md, "The raw peak at today's defaults"). The rigid belt
-# has no wrap contact, hence the strict xfail.
+# 0.93 kN with 0.1 m (docs/case-g.md, "The raw peak at today's defaults"). The rigid belt's
+# wrap joints (opt-in, session 11) take it to +9.1 % (the test below); at the builder's
+# default (plain joints) the strict xfail stands.
 @pytest.mark.parametrize("formulation", [
     "node_kelvin_voigt",
     pytest.param("rigid_body", marks=pytest.mark.xfail(
         strict=True, reason="rigid bodies' chordal action on the drums: raw peak +35.1 % over the "
-        "peak below 2 Hz (issue 12's target 3 %); no wrap contact for rigid bodies")),
+        "peak below 2 Hz (issue 12's target 3 %) at the builder's plain joints; wrap joints +9.1 %")),
 ])
 def test_raw_peak_within_3_percent_of_the_peak_below_2_hz(runs, formulation):
     t1 = runs[formulation][1]["tension"][:, 0]
     smooth = low_pass(t1, INTERVAL, 2.0)
     assert t1.max() / smooth.max() - 1 < 0.03
+
+
+# The rigid belt's wrap joints (belt.pulley_contact = "wrap", opt-in: docs/kubas.md, "Wrap
+# joints") draw each strand at R*omega instead of the bodies' polygon's R_e*omega*cos(theta).
+# Measured (session 11) on this start: raw peak +9.1 % over the peak below 2 Hz (63.68 /
+# 58.36 kN, both near 1.2 s), against the plain joints' +35.1 %. Asserted: below 12 %, a
+# margin of 3 points over the measured figure for the start's run-to-run spread on a loaded
+# machine (the plain joints stay above 30 %); issue 12's 3 % is not met yet (the rolls'
+# segment contact and the fades at the joints' ends are left).
+def test_rigid_wrap_joints_take_most_of_the_raw_peak_excess():
+    curve = beltrs.StartCurve(shape="harrison", speed=GUO_WANG["speed"], ramp=RAMP)
+    scene = guo_wang_conveyor(curve, length=LENGTH, formulation="rigid_body")
+    scene = replace(scene, belt=replace(scene.belt, pulley_contact="wrap"))
+    assert loads_scene(dumps_scene(scene)).belt.pulley_contact == "wrap"
+    sim = beltrs.Simulation(scene)
+    sim.stabilise(tolerance=1e-5, max_steps=400_000)
+    data = probe_run(sim, PROBES, RAMP + SETTLE, INTERVAL)
+    t1 = data["tension"][:, 0]
+    smooth = low_pass(t1, INTERVAL, 2.0)
+    assert t1.max() / smooth.max() - 1 < 0.12
 
 
 def test_bad_formulation_input_is_refused_by_name():
@@ -135,12 +156,13 @@ def test_bad_formulation_input_is_refused_by_name():
     # in their sag as the node belt's (initial.sag, the builders' default); bad input named.
     scene = guo_wang_conveyor(length=LENGTH, formulation="rigid_body", start="rest")
     assert scene.initial is not None and scene.initial.sag
-    assert scene.belt.pulley_contact == "nodes"  # the engine refuses wrap contact with rigid bodies
+    assert scene.belt.pulley_contact == "nodes"  # wrap joints are opt-in (docs/kubas.md)
     with pytest.raises(beltrs.SceneError, match=r"initial\.sag"):
         beltrs.Simulation(replace(scene, initial=replace(scene.initial, sag="yes")))
-    # The node belt's scene switched to rigid bodies by hand: its wrap contact is refused by name.
+    # The node belt's scene switched to rigid bodies by hand: its roll wrap is refused by name
+    # (its drums' wrap contact means wrap joints for rigid bodies).
     node = guo_wang_conveyor(length=LENGTH, start="rest")
-    with pytest.raises(beltrs.SceneError, match="pulley_contact"):
+    with pytest.raises(beltrs.SceneError, match="idler_contact"):
         beltrs.Simulation(replace(node, belt=replace(node.belt, formulation="rigid_body")))
     # The builder: a known formulation; rigid bodies start from the design state too.
     from beltrs.conveyor import Conveyor

@@ -822,7 +822,12 @@ class Belt(_Table):
             polygon, with the chordal ripple of a chain on a sprocket on a held drum) or
             ``"wrap"`` (elements on a pulley measured along their path round it, tangents
             and arc: the strand leaves on the tangent, raw tension peaks without the ripple;
-            docs/wrap-contact.md). Default "nodes" (the conveyor builders,
+            docs/wrap-contact.md). With ``formulation = "rigid_body"``, ``"wrap"`` gives
+            the bodies wrap joints: the joint where a strand meets a drum measured along
+            the string's path, so the strand is drawn at R*omega instead of the bodies'
+            polygon's speed (docs/kubas.md, "Wrap joints"; opt-in: a start from the design
+            state rings at the boundary joints until the placement holds their offsets).
+            Default "nodes" (the conveyor builders,
             :class:`beltrs.conveyor.Conveyor` and :func:`beltrs.scenes.guo_wang_conveyor`,
             set "wrap" for the node belt); an open belt takes "nodes" only.
         idler_contact: how the belt meets the idler rolls: ``"segment"`` (Hustrulid's

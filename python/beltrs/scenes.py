@@ -56,8 +56,11 @@ def conveyor_contact(formulation: str) -> str:
     ``"wrap"`` for the node belt (the belt measured along its path round the drums: no chord
     polygon, so no chordal tension ripple on a held drum and no node-phase tension step at
     rest; docs/wrap-contact.md), ``"nodes"`` for the rigid-body belt, whose bodies rest on
-    the pulleys with their own contact (rust/src/belt/rigid/contact.rs; the engine refuses
-    wrap contact with it)."""
+    the pulleys with their own contact (rust/src/belt/rigid/contact.rs). ``"wrap"`` with
+    rigid bodies (its wrap joints, rust/src/belt/rigid/wrap_joint.rs: the strand drawn at
+    R*omega instead of the bodies' polygon's R_e*omega*cos(theta); docs/kubas.md) is opt-in
+    until the design start places the joints' offsets (a start from the design state rings
+    at the four boundary joints; docs/case-g.md)."""
     return "nodes" if formulation == "rigid_body" else "wrap"
 
 

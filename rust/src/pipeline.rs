@@ -95,6 +95,12 @@ pub struct Scratch {
     /// evaluation, with their path length minus their chord, m: the viscoelastic arms
     /// (`belt::node::zener::advance_all`) follow the length the element's spring sees.
     pub wrap_excess: Vec<(usize, f64)>,
+    /// The rigid belt's wrap joints (`belt::rigid::wrap_joint`) of this evaluation: (pulley,
+    /// the body B whose end stands off the drum's body, [`WrapLoad::slide`]). Empty
+    /// without them.
+    ///
+    /// [`WrapLoad::slide`]: crate::belt::rigid::wrap_joint::WrapLoad::slide
+    pub wrap_slide: Vec<(usize, usize, V2)>,
     /// Dense per-element copy of `wrap_excess` used while the arms advance (zero between).
     pub arm_excess: Vec<f64>,
     /// Friction torque on each idler, N·m.
@@ -152,6 +158,7 @@ impl Scratch {
             wrap_mark: Vec::new(),
             wrap_stamp: 0,
             wrap_excess: Vec::new(),
+            wrap_slide: Vec::new(),
             arm_excess: Vec::new(),
             idler_torque: vec![0.0; q],
             idler_resistance: vec![0.0; q],

@@ -18,6 +18,7 @@ mod open_belts;
 mod recorder;
 mod recording_params;
 mod rigid_body;
+mod rigid_wrap;
 mod rkf45;
 mod roll_wrap;
 mod run_contract;

@@ -55,7 +55,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 spin: &s.body_spin,
                 length: &m.rest_length,
             };
-            super::pulley_body_contact(
+            let on = super::pulley_body_contact(
                 window,
                 &bodies,
                 &body,
@@ -63,7 +63,19 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 &mut sc.body_torque,
                 contacts,
                 normal_force,
-            )
+            );
+            // A wrap joint's body B slides along the drum against the chain's motion
+            // (`belt::rigid::wrap_joint`): its friction's lever takes that in.
+            for &(pulley, b, slide) in &sc.wrap_slide {
+                if pulley != j {
+                    continue;
+                }
+                if let Some(k) = contacts.node.iter().position(|&i| i == b) {
+                    let t = contacts.normal[k];
+                    contacts.lever[k] += slide.dot(&nalgebra::Vector2::new(-t.y, t.x));
+                }
+            }
+            on
         } else {
             // Nodal: the linear penalty, or Kubas's nonlinear law (validation refuses it
             // with wrap contact; rigid bodies under it touch at their mass centres, as in

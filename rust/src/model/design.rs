@@ -394,10 +394,11 @@ pub(super) fn place(
     }
     // With wrap contact an element on a drum is measured along its path round it
     // (`contact::wrap`): nodes at equal arc length there, not sunk by a penetration.
-    let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap;
     // The rigid-body belt walks its joint points instead (`super::design_rigid`): on a
-    // wrap they lie on the vertex circle, which already holds the bodies' depth.
+    // wrap they lie on the vertex circle, which already holds the bodies' depth (its wrap
+    // joints, `belt::rigid::wrap_joint`, change only the joint that meets a strand).
     let rigid = belt.formulation == crate::scene::Formulation::RigidBody;
+    let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap && !rigid;
     let sink_wraps: &[ContactWrap] = if wrap_contact || rigid { &[] } else { &wraps };
     // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
     // the belt bends over each roll at the roll, and an element over one is as long as its

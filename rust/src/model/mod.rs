@@ -78,8 +78,12 @@ pub struct Model {
     /// Elements carry no compression.
     pub tension_only: bool,
     /// Wrap contact with the pulleys (`belt.pulley_contact = "wrap"`, `contact::wrap`);
-    /// false: nodal contact.
+    /// false: nodal contact (the node belt's only).
     pub wrap_contact: bool,
+    /// The rigid-body belt's wrap joints (`belt.pulley_contact = "wrap"`,
+    /// `belt::rigid::wrap_joint`): each joint where a strand meets a drum measured along the
+    /// string's path.
+    pub rigid_wrap: bool,
     /// Wrap contact with the idler rolls (`belt.idler_contact = "wrap"`,
     /// `contact::roll_wrap`); false: centre-line segment contact.
     pub roll_wrap: bool,
@@ -295,7 +299,10 @@ impl Model {
             bending_stiffness: belt.bending_stiffness,
             uniform,
             tension_only: scene.belt.tension_only,
-            wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap,
+            wrap_contact: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap
+                && formulation != Formulation::RigidBody,
+            rigid_wrap: scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap
+                && formulation == Formulation::RigidBody,
             roll_wrap: scene.belt.idler_contact == crate::scene::IdlerContactKind::Wrap,
             formulation,
             gravity: scene.gravity,

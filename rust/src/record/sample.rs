@@ -23,6 +23,7 @@ impl Simulation {
         let rigid = m.is_rigid();
         if rigid {
             (e.strain, e.bending) = crate::belt::rigid::stage::chain_energy(m, s);
+            e.strain += crate::belt::rigid::stage::wrap_energy(m, s);
         }
         for i in 0..n {
             let v = s.velocity[i] + sc.force[i] * (half * self.inertia.inv_mass[i]);

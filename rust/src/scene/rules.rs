@@ -67,15 +67,6 @@ impl Scene {
             }
         }
         if self.belt.formulation == Formulation::RigidBody
-            && self.belt.pulley_contact == super::PulleyContact::Wrap
-        {
-            return Err(BeltError::invalid(
-                "belt.pulley_contact",
-                "wrap",
-                "wrap contact measures node-belt elements along their path round a pulley; the rigid_body formulation's bodies touch pulleys at their mass centres: use pulley_contact = \"nodes\"",
-            ));
-        }
-        if self.belt.formulation == Formulation::RigidBody
             && self.belt.idler_contact == super::IdlerContactKind::Wrap
         {
             return Err(BeltError::invalid(

@@ -6,6 +6,8 @@
 //! - [`sdes`]: the SDE forces and torques between neighbouring bodies.
 //! - [`stage`]: the stage the pipeline calls (`Stage::RigidChain`) and the chain's energy.
 //! - [`contact`]: a body on a pulley, touching it with its two ends (a chord on a circle).
+//! - [`wrap_joint`]: the joint where a strand meets a drum measured along the string's path
+//!   (`belt.pulley_contact = "wrap"`).
 //!
 //! The same machinery is Guo & Wang's (2020) rigid finite element belt: c_x = EA/Δl,
 //! c_φ = EI/Δl (`crate::model`'s `belt_rigid` part, `docs/kubas.md`).
@@ -13,6 +15,7 @@
 pub mod contact;
 pub mod sdes;
 pub mod stage;
+pub mod wrap_joint;
 
 /// Mass moment of inertia of a thin homogeneous link about its mass centre, mᵢlᵢ²/12
 /// (Kubas eq. 2), kg·m².
