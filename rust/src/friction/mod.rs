@@ -10,7 +10,7 @@
 //!
 //! µs·N is the limit of a contact at rest. A contact that slid in the last step, or whose
 //! neighbour on the pulley did (the slip front), has µk·N instead (Coulomb's kinetic state;
-//! [`static_limits`], the memory in `State::sliding`): a slip arc then slides steadily at
+//! `static_limits`, the memory in `State::sliding`): a slip arc then slides steadily at
 //! µk as in creep theory, instead of sticking to µs·N and breaking away node by node.
 
 pub mod creep;
