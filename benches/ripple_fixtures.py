@@ -23,7 +23,11 @@ element length and belt speed:
 Steady running without the start (``--start running``: the builder's running design start,
 steady-running tensions and the belt at speed, no ramp; the figures over the last 2 s of
 ``--steady`` s): session 10 at the defaults, case G 0.146 (70 % of the energy above 2 Hz in
-the 9.96 Hz cogging line) and 300 m 0.106 (drum stick-slip spikes above 80 Hz):
+the 9.96 Hz cogging line) and 300 m 0.106 (drum stick-slip spikes above 80 Hz; 0.0094 once
+the friction solve remembers sliding contacts, docs/wrap-contact.md "Session 10: the drums'
+stick-slip"). Session 11 (that law on main, and case G's builder at 0.196 m elements, off
+whole numbers per idler pitch): case G 0.018 motor, 0.032 gearbox shaft (0.2 m: 0.030, 0.052,
+the 9.96 Hz cogging line), 300 m 0.011, 0.013; after the 4 s start case G 0.044:
 
     python benches/ripple_fixtures.py case_g --start running --steady 8 --windows 2 --spectrum 6
 """

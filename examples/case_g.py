@@ -9,8 +9,9 @@ its starting curve. The paper (Guo & Wang 2020, Table 1) gives: 972 m, 400 t/h a
 (55.6 kg/m of material), belt 1 m wide, 24.5 kg/m, ST1250; drum 0.8 m, 800 kg; motor
 150 kW at 1000 rpm. Everything else is assumed, with typical values:
 
-- belt EA = 80 MN (steel cord ST1250), EI = 20 N*m^2, 5 % element damping, 0.2 m elements
-  (30 degrees on the 0.4 m drum, the engine's default limit);
+- belt EA = 80 MN (steel cord ST1250), EI = 20 N*m^2, 5 % element damping, 0.196 m elements
+  (at most 30 degrees on the 0.4 m drum, the engine's default limit, and off whole numbers
+  per idler pitch: docs/wrap-contact.md, "Session 11: the element length off the pitches");
 - tail pulley 0.4 m radius on a horizontal gravity takeup: 50 kN per strand (10.2 t);
 - head drum inertia 100 kg*m^2; lagging mu_s 0.4, mu_k 0.35;
 - carry idler sets every 1.2 m (20 kg rotating), return rolls every 3 m (15 kg), 133 mm

@@ -517,13 +517,28 @@ def test_small_idlers_beside_large_and_small_pulleys():
     length = sim.node_mass[0] / 15.0
     assert length == pytest.approx(0.5 * np.pi / 6, rel=0.05)
     sim.stabilise()
-    res = sim.run(4.0, record_interval=0.01, energy=True)
+    res = sim.run(4.0, record_interval=0.01, energy=True, contact_forces=True)
     # At rest every carry roll carries the belt; running (2 m/s at the drum) the belt wraps
     # both pulleys and stays finite with bounded energy.
     assert np.all(res.idler_force[0] > 0)
     assert np.all(res.contact_nodes[:, 0] >= 3) and np.all(res.contact_nodes[:, 1] >= 30)
     assert -res.pulley_speed[-1, 1] * 5.0 > 1.0  # the 125 t·m² drum is still speeding up
-    assert np.all(res.slipping_nodes[:, 1] < res.contact_nodes[:, 1])
+    # The belt never slips grossly on the 5 m drum: its contacts never all slide the same way.
+    # They may all slide at once, both ways (measured, session 11, every 0.5 ms over 2.9-3.4 s:
+    # 52 of 52 at 3.140 s, +28/-24, net friction 0.2 of mu_k*sum N): the torque-driven start
+    # rings the strands, and waves of several kN (entry 4.3 -> 8.5 kN, exit 7.0 -> 10.8 kN in
+    # 60 ms) raise both ends of the arc above the tension stored on it (6.5 kN). Slip zones
+    # then run in from both ends, the belt on the arc stretching out of them, until the two
+    # fronts meet (T_entry*T_exit = T_min^2*e^(mu_k*theta), measured 0.975 of it): a single
+    # belt point at rest in the continuum, a node or none in the discrete belt. The 125 t*m^2
+    # drum does not follow the waves (its speed changes by 3 % in 0.12 s). Main's old law, whose
+    # last node needed mu_s*N to slide, had 2 such samples in that window too (this record's
+    # 0.01 s missed them); its fronts advance at mu_k*N now (docs/wrap-contact.md).
+    mu_k = sim.scene.pulleys[1].friction.kinetic
+    f, n = res.contact_friction[:, 1], res.contact_normal[:, 1]
+    sliding = (n > 0) & np.isclose(np.abs(f), mu_k * n, rtol=1e-9)
+    one_way = np.maximum((sliding & (f > 0)).sum(axis=1), (sliding & (f < 0)).sum(axis=1))
+    assert np.all(one_way < res.contact_nodes[:, 1])
     assert_energy_bounded(res)
 
 

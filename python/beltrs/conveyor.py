@@ -444,8 +444,12 @@ class Conveyor:
         pulley_radius: head and tail drum radius, m. Default None: :func:`pulley_radius_for`.
         lagging: belt friction on the drums, (static, kinetic). Default (0.4, 0.35), rubber
             lagging.
-        element_length: target element length, m. Default None: the smaller of a quarter of
-            the carry pitch and 30° of arc on the drums.
+        element_length: element length, m. Default None: the smaller of a quarter of the
+            carry pitch and 30° of arc on the drums, shortened where needed so that neither
+            idler pitch is within an eighth of a whole number of elements (the rolls'
+            gravity cogging would add up in phase: :func:`beltrs.layout.element_length_off_pitches`;
+            a quarter of the carry pitch is a whole 4, so drums above 1.146 m take 0.291 m
+            instead of 0.3 m with the default 1.2 m and 3 m pitches).
         damping_ratio: belt's axial damping, fraction of critical per element. Default 0.05.
         gravity: m/s². Default 9.81.
         start: the design state the scene starts from (:class:`beltrs.Initial`,
@@ -524,7 +528,10 @@ class Conveyor:
         there)."""
         if self.element_length is not None:
             return float(self.element_length)
-        return min(self.carry.pitch / 4, self.radius * math.pi / 6)
+        from .layout import element_length_off_pitches
+
+        target = min(self.carry.pitch / 4, self.radius * math.pi / 6)
+        return element_length_off_pitches(target, [self.carry.pitch, self.returns.pitch])
 
     def validate(self) -> None:
         """Check every field; raise :class:`beltrs.SceneError` naming the first bad one."""

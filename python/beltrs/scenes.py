@@ -9,6 +9,7 @@ from typing import Any, Optional
 from . import _beltrs, din22101
 from ._beltrs import SceneError
 from .conveyor import check_control, motor_rotor_inertia
+from .layout import element_length_off_pitches
 from .scene import (
     Belt,
     Drive,
@@ -342,7 +343,7 @@ def guo_wang_conveyor(
     start_curve: Optional[StartCurve] = None,
     *,
     length: float = GUO_WANG["length"],
-    element_length: float = 0.2,
+    element_length: Optional[float] = None,
     elements: Optional[int] = None,
     material: float = GUO_WANG["material"],
     f: float = GUO_WANG["f"],
@@ -363,9 +364,12 @@ def guo_wang_conveyor(
 
     - Belt: steel cord ST1250, EA = 80 MN (elongation about 0.16 % at 10 % of the rated
       1250 kN, the usual range for ST belts), EI = 20 N*m^2, element damping 5 % of
-      critical, elements of ``element_length`` m (default 0.2: a sixth of the 1.2 m carry
-      pitch, so the polygonal belt does not rattle on the rolls, docs/stability.md, and
-      30 degrees of wrap per element on the 0.8 m drum); wrap contact on the drums
+      critical, elements of ``element_length`` m (default 0.196: the longest not over
+      0.2 m, a sixth of the 1.2 m carry pitch so the polygonal belt does not rattle on the
+      rolls, docs/stability.md, and 30 degrees of wrap per element on the 0.8 m drum, at
+      which neither idler pitch is within an eighth of a whole number of elements:
+      6.125 and 15.3125 per pitch, so the rolls' gravity cogging does not add up in phase,
+      :func:`beltrs.layout.element_length_off_pitches`; 0.2 m until session 11); wrap contact on the drums
       (``belt.pulley_contact = "wrap"``: no chordal ripple on the held drum,
       docs/wrap-contact.md; nodal contact for the rigid-body belt) and on the rolls
       (``belt.idler_contact = "wrap"``: no chordal action of the rolls; the segment
@@ -403,7 +407,8 @@ def guo_wang_conveyor(
             a positive value is converted to the clockwise (negative) sense of this
             layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
         length: centre distance, m. Default 972 (shorter conveyors for quick studies).
-        element_length: target element length, m. Default 0.2.
+        element_length: element length, m, used as given. Default None: 0.196, chosen
+            off the idler pitches as above.
         elements: belt elements; overrides ``element_length`` (for
             :func:`beltrs.study.accuracy_cost`). Default None.
         material: kg per metre of belt on the carry strand. Default 55.6.
@@ -457,6 +462,8 @@ def guo_wang_conveyor(
     idlers += _idler_row(length, r, -r - roll, p["return_pitch"], rotating_mass=return_mass,
                          inertia=0.8 * return_mass * roll**2, contact_damping=1.5e4, **rolls)
     path = 2 * length + 2 * math.pi * r
+    if element_length is None:
+        element_length = element_length_off_pitches(0.2, [p["carry_pitch"], p["return_pitch"]])
     belt = Belt(
         axial_stiffness=p["axial_stiffness"],
         mass_per_length=p["belt_mass"],

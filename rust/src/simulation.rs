@@ -140,6 +140,12 @@ impl Simulation {
         if self.state.creep.len() != model.creep_memory_len() {
             self.state.creep = vec![0.0; model.creep_memory_len()];
         }
+        // Stick-force friction's memory: kept while the pulleys and points are the same.
+        if self.state.sliding.len() != model.pulleys.len()
+            || self.state.position.len() != self.model.nodes
+        {
+            self.state.sliding = vec![Vec::new(); model.pulleys.len()];
+        }
         // Viscoelastic arms: kept while the model keeps them, started relaxed at the
         // current lengths when switched on, dropped when switched off.
         if self.state.arm_force.len() != model.arm_len() {

@@ -88,6 +88,11 @@ pub struct State {
     pub arm_force: Vec<f64>,
     /// The element lengths the arm forces were advanced to, m (empty with them).
     pub arm_length: Vec<f64>,
+    /// Stick-force friction's memory (`crate::friction`): for each pulley, the belt points
+    /// that slid on it in the last step, in ascending order. Coulomb's law gives a sliding
+    /// contact µk and a contact at rest µs; the next step's solve reads which is which
+    /// from here (docs/wrap-contact.md, "Session 10: the drums' stick–slip").
+    pub sliding: Vec<Vec<usize>>,
 }
 
 impl State {
@@ -143,6 +148,7 @@ impl State {
             } else {
                 Vec::new()
             },
+            sliding: vec![Vec::new(); model.pulleys.len()],
         }
     }
 

@@ -58,6 +58,8 @@ fn resumed_run_continues_bit_for_bit() {
     a.set_scene(&changed).unwrap();
     a.step(100).unwrap();
     checkpoint::save(&a, &path).unwrap();
+    // Stick-force friction's memory is in play: points slide on a pulley at the save.
+    assert!(a.state.sliding.iter().any(|points| !points.is_empty()));
 
     let mut b = checkpoint::load(&path).unwrap();
     assert_eq!(b.state, a.state);

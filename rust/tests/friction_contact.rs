@@ -1207,3 +1207,109 @@ fn slip_loop_matches_one_at_a_time_rule() {
     // The random cases cover no slip, one-sided and two-sided slip.
     assert!(cases.iter().all(|&c| c > 50), "case mix {cases:?}");
 }
+
+// ---------------------------------------------------------------------------------------
+// Coulomb's kinetic state and the slip front (docs/wrap-contact.md, "Session 10: the
+// drums' stick–slip")
+// ---------------------------------------------------------------------------------------
+
+/// Contacts at `nodes` on a pulley held at its speed (α = 0, so each contact's stick force
+/// is its own m·v_n/Δt + t·F, here t·F = `stick[k]` with v_n = 0), each with normal force
+/// `nf`, µs = 0.5, µk = 0.4, and the points in `sliding` remembered as sliding. Returns the
+/// friction force of each contact and the remembered points after the step.
+fn held_step(
+    nodes: &[usize],
+    n: usize,
+    stick: &[f64],
+    sliding: &[usize],
+    dt: f64,
+) -> (Vec<f64>, Vec<usize>) {
+    let nf = 1000.0;
+    let mut contacts = PulleyContacts::default();
+    for (k, &i) in nodes.iter().enumerate() {
+        let a = 0.3 * k as f64;
+        contacts.node.push(i);
+        contacts.normal.push(unit(a));
+        contacts.normal_force.push(nf);
+        contacts.penetration.push(0.0);
+    }
+    let pulley = FrictionPulley {
+        radius: 0.5,
+        inertia: 10.0,
+        omega: 2.0,
+        center_velocity: V2::zeros(),
+        applied_torque: 0.0,
+        mu_static: 0.5,
+        mu_kinetic: 0.4,
+        prescribed: Some(Prescribed::within(2.0, f64::INFINITY)),
+    };
+    // Every point moves with the surface: v = R ω t.
+    let mut v = vec![V2::zeros(); n];
+    let mut force = vec![V2::zeros(); n];
+    for (k, &i) in nodes.iter().enumerate() {
+        let t = tangent(contacts.normal[k]);
+        v[i] = t * (pulley.radius * pulley.omega);
+        force[i] = t * stick[k];
+    }
+    let mass = vec![2.0; n];
+    let mut scratch = StickScratch::default();
+    scratch.sliding = sliding.to_vec();
+    pulley_stick_friction(&contacts, &pulley, &v, &mass, dt, &mut force, &mut scratch);
+    (scratch.force.clone(), scratch.sliding.clone())
+}
+
+#[test]
+fn a_sliding_contact_keeps_the_kinetic_limit_until_it_can_stop() {
+    // µk·N = 400 N < 450 N < µs·N = 500 N: held at rest, slides on once sliding.
+    let dt = 1e-4;
+    let (f, after) = held_step(&[3], 8, &[450.0], &[], dt);
+    assert_eq!(
+        (f[0], after.as_slice()),
+        (450.0, &[][..]),
+        "at rest: held within µs·N"
+    );
+    let (f, after) = held_step(&[3], 8, &[450.0], &[3], dt);
+    assert_eq!(
+        (f[0], after.as_slice()),
+        (400.0, &[3][..]),
+        "sliding: µk·N, still sliding"
+    );
+    let (f, after) = held_step(&[3], 8, &[-450.0], &[3], dt);
+    assert_eq!(
+        (f[0], after.as_slice()),
+        (-400.0, &[3][..]),
+        "either direction"
+    );
+    // Below µk·N kinetic friction stops it within the step: it sticks and is forgotten.
+    let (f, after) = held_step(&[3], 8, &[390.0], &[3], dt);
+    assert_eq!((f[0], after.as_slice()), (390.0, &[][..]));
+    // Beyond µs·N a contact at rest breaks away and is remembered.
+    let (f, after) = held_step(&[3], 8, &[510.0], &[], dt);
+    assert_eq!((f[0], after.as_slice()), (400.0, &[3][..]));
+    // Quasi-static friction (infinite step) has no motion to remember: µs·N throughout.
+    let (f, after) = held_step(&[3], 8, &[450.0], &[3], f64::INFINITY);
+    assert_eq!((f[0], after.as_slice()), (450.0, &[][..]));
+}
+
+#[test]
+fn the_slip_front_advances_at_the_kinetic_limit() {
+    let dt = 1e-4;
+    // Points 1, 2, 3 on the pulley, 3 sliding: 2 is at the slip front (µk·N), 1 is not.
+    let (f, after) = held_step(&[1, 2, 3], 8, &[450.0, 450.0, 450.0], &[3], dt);
+    assert_eq!(f, vec![450.0, 400.0, 400.0]);
+    assert_eq!(after, vec![2, 3]);
+    // The same from the other side, and a point sliding the other way counts too.
+    let (f, _) = held_step(&[1, 2, 3], 8, &[450.0, 450.0, -450.0], &[1], dt);
+    assert_eq!(f, vec![400.0, 400.0, -450.0]);
+    // Neighbours in the list that are not neighbours on the belt (a gap) are not.
+    let (f, _) = held_step(&[1, 3], 8, &[450.0, 450.0], &[3], dt);
+    assert_eq!(f, vec![450.0, 400.0]);
+    // A closed belt: the last point and point 0 are neighbours.
+    let (f, after) = held_step(&[7, 0], 8, &[450.0, 450.0], &[0], dt);
+    assert_eq!(f, vec![400.0, 400.0]);
+    assert_eq!(after, vec![0, 7]);
+    // Nothing remembered: every contact at rest holds up to µs·N.
+    let (f, after) = held_step(&[1, 2, 3], 8, &[450.0, 499.0, 450.0], &[], dt);
+    assert_eq!(f, vec![450.0, 499.0, 450.0]);
+    assert!(after.is_empty());
+}

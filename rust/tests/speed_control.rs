@@ -357,10 +357,11 @@ fn checkpoint_without_drive_memory_reads_as_zero_memory() {
     // the state ending after the load zones: drop the drives' memory (a count and three
     // numbers per pulley), the brake ramps (a count and one number per pulley) and
     // version 5's tail (two empty body arrays for the node belt, the adaptive step and two
-    // step counts, the empty friction memory, and the empty viscoelastic arm forces and
-    // lengths). Then fix the payload length and the checksum.
+    // step counts, the empty friction memory, the empty viscoelastic arm forces and
+    // lengths, and stick-force friction's sliding points: a count and an empty list per
+    // pulley). Then fix the payload length and the checksum.
     let p = scene.pulleys.len();
-    let tail = (8 + 24 * p) + (8 + 8 * p) + 8 + 8 + 8 + 8 + 8 + 8 + 8 + 8;
+    let tail = (8 + 24 * p) + (8 + 8 * p) + 8 + 8 + 8 + 8 + 8 + 8 + 8 + 8 + (8 + 8 * p);
     let string_end =
         |at: usize| at + 8 + u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
     let engine_end = string_end(24);

@@ -167,6 +167,15 @@ pub(super) fn write_state(w: &mut Writer, s: &State) {
     // viscoelastic arms): the Zener arms' forces and lengths.
     w.f64s(&s.arm_force);
     w.f64s(&s.arm_length);
+    // Added within version 5 after the arms (absent from older files: every contact at
+    // rest): stick-force friction's memory, the sliding points of each pulley.
+    w.u64(s.sliding.len() as u64);
+    for list in &s.sliding {
+        w.u64(list.len() as u64);
+        for &i in list {
+            w.u64(i as u64);
+        }
+    }
 }
 
 pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
@@ -251,7 +260,19 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
     } else {
         (Vec::new(), Vec::new())
     };
+    let sliding = if r.pos < r.bytes.len() {
+        let n = r.len("sliding lists", 8)?;
+        (0..n)
+            .map(|_| {
+                let m = r.len("sliding points", 8)?;
+                (0..m).map(|_| r.usize("sliding point")).collect()
+            })
+            .collect::<Decoded<Vec<Vec<usize>>>>()?
+    } else {
+        vec![Vec::new(); pulley_omega.len()]
+    };
     Ok(State {
+        sliding,
         time,
         step,
         position,

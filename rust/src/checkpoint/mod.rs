@@ -264,11 +264,17 @@ fn check_state_fits(s: &State, m: &Model) -> Result<(), String> {
         ),
         ("arm forces", s.arm_force.len(), m.arm_len()),
         ("arm lengths", s.arm_length.len(), m.arm_len()),
+        ("sliding lists", s.sliding.len(), p),
     ];
     for (what, have, want) in sizes {
         if have != want {
             return Err(format!("corrupt: {have} {what} for a model with {want}"));
         }
+    }
+    if let Some(&i) = s.sliding.iter().flatten().find(|&&i| i >= n) {
+        return Err(format!(
+            "corrupt: sliding point {i} beyond the {n} belt points"
+        ));
     }
     for (j, w) in s.pulley_window.iter().enumerate() {
         if w.first >= n || w.len > n {

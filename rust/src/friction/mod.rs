@@ -7,6 +7,11 @@
 //! torque on the pulley, and the remaining nodes are solved again. Because the applied force
 //! never exceeds the stick force, friction can stop a slip but never reverse it: there is
 //! no oscillation about zero relative speed.
+//!
+//! µs·N is the limit of a contact at rest. A contact that slid in the last step, or whose
+//! neighbour on the pulley did (the slip front), has µk·N instead (Coulomb's kinetic state;
+//! `static_limits`, the memory in `State::sliding`): a slip arc then slides steadily at
+//! µk as in creep theory, instead of sticking to µs·N and breaking away node by node.
 
 pub mod creep;
 pub mod stage;
@@ -29,9 +34,19 @@ pub struct StickScratch {
     /// Storage of the slip loop's two sorted candidate lists (see `release_slipping`).
     list_pos: Vec<u128>,
     list_neg: Vec<u128>,
-    /// Each contact's excess over µs·N per unit mass at α = 0, "+" and "−" sides, m/s².
+    /// Each contact's excess over its static limit per unit mass at α = 0, "+" and "−"
+    /// sides, m/s².
     key_pos: Vec<f64>,
     key_neg: Vec<f64>,
+    /// Each contact's static limit, N: µs·N at rest, µk·N while sliding or next to a
+    /// sliding contact (see [`static_limits`]).
+    limit: Vec<f64>,
+    /// Whether each contact slid in the previous step.
+    slid: Vec<bool>,
+    /// The belt points that slid on this pulley in the previous step (input; the state's
+    /// friction memory, `State::sliding`), replaced by those that slide in this step
+    /// (output), in ascending order. Empty: every contact at rest before the step.
+    pub sliding: Vec<usize>,
 }
 
 /// Prescribed motion of a pulley with a limited torque: whatever holds the pulley (a brake
@@ -168,6 +183,7 @@ pub fn pulley_stick_friction(
         scratch.sticking.push(true);
         scratch.force.push(0.0);
     }
+    static_limits(contacts, pulley, v.len(), dt, scratch);
     // A holder (brake, speed-controlled drive) that can hold the pulley fixes its motion:
     // it reaches the prescribed speed this step (a brake stops it). The nodes then stick to
     // (or slip on) a pulley of prescribed motion, one by one, and the holder takes what the
@@ -182,6 +198,7 @@ pub fn pulley_stick_friction(
         for k in 0..nc {
             let (f, slips) = limit(
                 scratch.free[k] - mass[contacts.node[k]] * r * alpha,
+                scratch.limit[k],
                 contacts.normal_force[k],
                 pulley,
             );
@@ -193,7 +210,14 @@ pub fn pulley_stick_friction(
         let needed = pulley.inertia * alpha - pulley.applied_torque - r * tangential;
         let (torque, holds) = prescribed.limit(needed);
         if holds {
-            let mut out = apply(contacts, scratch, force, r, slipped, Some(torque));
+            let mut out = apply(
+                contacts,
+                scratch,
+                force,
+                (r, dt.is_finite()),
+                slipped,
+                Some(torque),
+            );
             out.holds = true;
             return out;
         }
@@ -202,7 +226,14 @@ pub fn pulley_stick_friction(
     }
     let known_torque = pulley.applied_torque + held.unwrap_or(0.0);
     let slipping = release_slipping(contacts, pulley, mass, scratch, known_torque);
-    apply(contacts, scratch, force, r, slipping, held)
+    apply(
+        contacts,
+        scratch,
+        force,
+        (r, dt.is_finite()),
+        slipping,
+        held,
+    )
 }
 
 /// A slip candidate as one integer that sorts worst first: the excess per unit mass at
@@ -275,7 +306,7 @@ fn release_slipping(
     for k in 0..nc {
         let f = scratch.free[k] - mass[contacts.node[k]] * r * alpha0;
         scratch.force[k] = f;
-        any |= f.abs() > pulley.mu_static * contacts.normal_force[k];
+        any |= f.abs() > scratch.limit[k];
     }
     if !any {
         return 0;
@@ -285,7 +316,7 @@ fn release_slipping(
     scratch.key_neg.clear();
     for k in 0..nc {
         let inv_m = 1.0 / mass[contacts.node[k]];
-        let limit = pulley.mu_static * contacts.normal_force[k];
+        let limit = scratch.limit[k];
         scratch.key_pos.push((scratch.free[k] - limit) * inv_m);
         scratch.key_neg.push((-scratch.free[k] - limit) * inv_m);
     }
@@ -418,25 +449,91 @@ fn finish(
     }
 }
 
-/// The friction force a contact can carry: the stick force `f` if within µs·N, else µk·N
-/// in its direction. Returns (force, slipping).
-fn limit(f: f64, normal: f64, pulley: &FrictionPulley) -> (f64, bool) {
-    if f.abs() > pulley.mu_static * normal {
+/// The friction force a contact can carry: the stick force `f` if within its static limit
+/// `static_limit` (N), else µk·N in its direction. Returns (force, slipping).
+fn limit(f: f64, static_limit: f64, normal: f64, pulley: &FrictionPulley) -> (f64, bool) {
+    if f.abs() > static_limit {
         (pulley.mu_kinetic * normal * f.signum(), true)
     } else {
         (f, false)
     }
 }
 
+/// Each contact's static limit for this step (N), into `scratch.limit`: µk·N for a
+/// contact that is sliding (it slid in the previous step, `scratch.sliding`) or that
+/// lies next to a sliding one on the pulley (the slip front), µs·N for the others. With
+/// `dt` infinite (quasi-static friction, the static relaxation) there is no motion to
+/// remember: µs·N for every contact.
+///
+/// Why (docs/wrap-contact.md, "Session 10: the drums' stick–slip"). Coulomb's law: the
+/// static coefficient holds a contact at rest; a contact that slides has only µk·N, so it
+/// stops sliding when µk·N can stop it within the step, not as soon as its stick force
+/// falls below µs·N. And a node is the belt over half an element either side of it: next
+/// to a sliding node the slip front lies within its share of the arc, where the belt at
+/// rest carries no friction in steady running (creep theory: the adhesion arc holds its
+/// tension) and the sliding part µk, so the front advances into it at µk·N. Without
+/// both, every node of a drive drum's slip arc loads to µs·N, breaks away, slides
+/// µk·N for a few steps and sticks again: a force drop of (µs − µk)·N per node and
+/// per break, the drums' stick–slip spikes. A belt at rest on its whole arc still breaks
+/// away at µs·N.
+fn static_limits(
+    contacts: &PulleyContacts,
+    pulley: &FrictionPulley,
+    nodes: usize,
+    dt: f64,
+    scratch: &mut StickScratch,
+) {
+    let nc = contacts.len();
+    scratch.limit.clear();
+    scratch.slid.clear();
+    if dt.is_finite() && !scratch.sliding.is_empty() {
+        scratch.sliding.sort_unstable();
+        let before = &scratch.sliding;
+        scratch.slid.extend(
+            contacts
+                .node
+                .iter()
+                .map(|i| before.binary_search(i).is_ok()),
+        );
+    } else {
+        scratch.slid.resize(nc, false);
+    }
+    // Contacts are listed in window order: k − 1 and k + 1 are the neighbours along the
+    // belt when their nodes are.
+    let next = |i: usize| if i + 1 == nodes { 0 } else { i + 1 };
+    for k in 0..nc {
+        let i = contacts.node[k];
+        let front = scratch.slid[k]
+            || (k > 0 && scratch.slid[k - 1] && next(contacts.node[k - 1]) == i)
+            || (k + 1 < nc && scratch.slid[k + 1] && next(i) == contacts.node[k + 1]);
+        let mu = if front {
+            pulley.mu_kinetic
+        } else {
+            pulley.mu_static
+        };
+        scratch.limit.push(mu * contacts.normal_force[k]);
+    }
+}
+
 /// Apply the solved contact forces to the nodes and sum their action on the pulley.
+/// The belt points that slide are remembered in `scratch.sliding` (none when `remember`
+/// is false: quasi-static friction).
 fn apply(
     contacts: &PulleyContacts,
-    scratch: &StickScratch,
+    scratch: &mut StickScratch,
     force: &mut [V2],
-    radius: f64,
+    (radius, remember): (f64, bool),
     slipping: usize,
     held_torque: Option<f64>,
 ) -> FrictionOutcome {
+    scratch.sliding.clear();
+    if remember && slipping > 0 {
+        let nodes = contacts.node.iter().zip(&scratch.sticking);
+        scratch
+            .sliding
+            .extend(nodes.filter(|(_, &stuck)| !stuck).map(|(&i, _)| i));
+        scratch.sliding.sort_unstable();
+    }
     let mut out = FrictionOutcome {
         slipping,
         held_torque,

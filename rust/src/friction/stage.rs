@@ -67,11 +67,16 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
                         &cx.inertia.mass,
                     );
                 }
+                s.sliding[j].clear();
                 continue;
             }
-            FrictionModel::None => continue,
+            FrictionModel::None => {
+                s.sliding[j].clear();
+                continue;
+            }
         };
         if static_coefficient == 0.0 || sc.contacts[j].is_empty() {
+            s.sliding[j].clear();
             continue;
         }
         let fp = FrictionPulley {
@@ -84,6 +89,8 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             mu_kinetic: kinetic_coefficient,
             prescribed,
         };
+        // The memory of which points slid (Coulomb's µk for them), in and out.
+        std::mem::swap(&mut sc.stick[j].sliding, &mut s.sliding[j]);
         let out = super::pulley_stick_friction(
             &sc.contacts[j],
             &fp,
@@ -93,6 +100,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             &mut sc.force,
             &mut sc.stick[j],
         );
+        std::mem::swap(&mut sc.stick[j].sliding, &mut s.sliding[j]);
         if sc.contact_detail {
             // Each contact's force on the pulley along its tangent, as the solve left it.
             sc.contacts[j]
