@@ -76,8 +76,8 @@ fn wrap_joints_take_the_chordal_ripple_off_a_running_loop() {
     // at v/l = 10 Hz) and rings it; the wrap joints draw it at R·ω. Measured on this loop
     // (mid-span joint, 1 s after 2 s from the design state): plain joints 903.3 N rms, wrap
     // joints 494.9 N rms (0.55 of it). What is left: the fades at both ends of each bend
-    // (`wrap_joint::FADE`) and the couples ∓x′·T the bend's term puts on the strand's last
-    // body, which tilt it (docs/kubas.md, "Wrap joints"). Asserted: below 0.65 of the plain
+    // (`wrap_joint::FADE`) and, not measured apart, the couples ∓x′·T that the bend's term
+    // puts on the strand's last body (docs/kubas.md, "Wrap joints"). Asserted: below 0.65 of the plain
     // joints' (a tenth of the plain ripple over the measured figure; the run is
     // deterministic, the margin is for other platforms' rounding of a ringing loop).
     let rms = |contact| {
