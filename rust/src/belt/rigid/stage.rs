@@ -112,13 +112,15 @@ fn wrap_joints(m: &Model, s: &State, sc: &mut crate::pipeline::Scratch, damped: 
         if p.contact_stiffness == 0.0 || !m.rests_on_ends(j) {
             continue;
         }
+        // Before the first contact evaluation the window is empty: the whole chain then.
         let w = s.pulley_window[j];
+        let (first, len) = if w.len == 0 { (0, n) } else { (w.first, w.len) };
         super::wrap_joint::for_each_wrap(
             &links,
             n,
             closed,
-            w.first,
-            w.len,
+            first,
+            len,
             s.pulley_center(m, j),
             p.radius,
             &sdes,
@@ -145,13 +147,15 @@ pub fn wrap_energy(m: &Model, s: &State) -> f64 {
         if p.contact_stiffness == 0.0 || !m.rests_on_ends(j) {
             continue;
         }
+        // Before the first contact evaluation the window is empty: the whole chain then.
         let w = s.pulley_window[j];
+        let (first, len) = if w.len == 0 { (0, n) } else { (w.first, w.len) };
         super::wrap_joint::for_each_wrap(
             &links,
             n,
             closed,
-            w.first,
-            w.len,
+            first,
+            len,
             s.pulley_center(m, j),
             p.radius,
             &sdes,
