@@ -63,6 +63,17 @@ pub(super) struct DesignPlacement {
     pub motion: InitialMotion,
 }
 
+/// The pulleys the belt rests on with penalty contact (not the nonlinear contact of a
+/// belt drive's grooves), as (centre, radius) in m.
+fn contact_drums(scene: &Scene) -> Vec<(V2, f64)> {
+    scene
+        .pulleys
+        .iter()
+        .filter(|p| p.contact_stiffness > 0.0 && p.nonlinear_contact.is_none())
+        .map(|p| (V2::new(p.center[0], p.center[1]), p.radius))
+        .collect()
+}
+
 /// True if the arc (`center`, `radius`) is the wrap of a pulley of the scene; returns the
 /// pulley's contact stiffness (N/m).
 fn pulley_of_arc(scene: &Scene, center: V2, radius: f64) -> Option<(usize, f64)> {
@@ -402,12 +413,7 @@ pub(super) fn place(
     // The rigid belt's wrap joints (`belt::rigid::wrap_joint`): the boundary joints stand off
     // along the drums (`design_rigid::wrap_offsets`).
     let wrap_joints = belt.pulley_contact == crate::scene::PulleyContact::Wrap && rigid;
-    let drums: Vec<(V2, f64)> = scene
-        .pulleys
-        .iter()
-        .filter(|p| p.contact_stiffness > 0.0 && p.nonlinear_contact.is_none())
-        .map(|p| (V2::new(p.center[0], p.center[1]), p.radius))
-        .collect();
+    let drums = contact_drums(scene);
     let sink_wraps: &[ContactWrap] = if wrap_contact || rigid { &[] } else { &wraps };
     // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
     // the belt bends over each roll at the roll, and an element over one is as long as its
@@ -703,12 +709,7 @@ fn rigid_placement(
 ) -> DesignPlacement {
     let (mut centres, mut angles) = super::design_rigid::bodies(vertices);
     if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
-        let drums: Vec<(V2, f64)> = scene
-            .pulleys
-            .iter()
-            .filter(|p| p.contact_stiffness > 0.0 && p.nonlinear_contact.is_none())
-            .map(|p| (V2::new(p.center[0], p.center[1]), p.radius))
-            .collect();
+        let drums = contact_drums(scene);
         let offsets = super::design_rigid::wrap_offsets(vertices, l0, &drums);
         super::design_rigid::stand_off(&mut centres, &mut angles, l0, &offsets);
     }
