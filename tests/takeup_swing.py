@@ -34,11 +34,16 @@ is a constant load, which shifts the takeup but damps nothing. Gravity and the
 counterweight balance the initial tension T0 in both strands and drop out (the belt starts
 at rest at T0 everywhere, as the builder's design start at rest does).
 
+The belt on the head drum is held there (``mu`` None) or slides on it (``mu`` the kinetic
+coefficient: a node of its own, the friction between it and the drum a dashpot of
+``slip_damping`` clipped at the capstan limit (e^(mu pi) - 1) T2, T2 the return's tension
+at the drum).
+
 Everything is numpy (eigenvalues and a fixed-step RK4), nothing from beltrs."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -63,6 +68,11 @@ class Lumped:
     t0: float = 0.0  # N, the tension at rest (both strands)
     carry_pitch: float = 0.0  # m, the carry idlers' pitch (0: no sag)
     return_pitch: float = 0.0  # m
+    # The belt on the head drum: None holds it there (no slip); a kinetic coefficient mu lets
+    # it slide (capstan: |T1 - T2| <= (e^(mu pi) - 1) T2, a stick regularised by a dashpot
+    # of slip_damping N*s/m between drum and belt).
+    mu: float | None = None
+    slip_damping: float = 5e6
     gravity: float = 9.81
     n: int = 30
 
@@ -73,12 +83,13 @@ class Lumped:
         le = L / n
         mc = self.belt + self.material + self.carry_rolls
         mr = self.belt + self.return_rolls
-        dof = 3 + 2 * (n - 1)
+        dof = 3 + 2 * (n - 1) + (self.mu is not None)
+        b = dof - 1 if self.mu is not None else 0  # the belt on the head drum
         # belt nodes: carry 0..n (tail to head), return 0..n (head to tail)
         T = np.zeros((2 * (n + 1), dof))
         T[0, 1], T[0, 2] = 1.0, -1.0  # carry's tail end: u - x
-        T[n, 0] = 1.0  # carry's head end: s
-        T[n + 1, 0] = 1.0  # return's head end: s
+        T[n, b] = 1.0  # carry's head end: s (or the belt on the drum)
+        T[n + 1, b] = 1.0  # return's head end
         T[2 * n + 1, 1], T[2 * n + 1, 2] = 1.0, 1.0  # return's tail end: u + x
         for i in range(1, n):
             T[i, 2 + i] = 1.0
@@ -149,7 +160,8 @@ class Lumped:
         """(frequency Hz, damping ratio) of the modes below 3 Hz, lowest first, the drive's PI
         loop included (a spring K_i and a dashpot K_p to the reference), linearised about
         ``tension`` (default: :meth:`running_tensions`)."""
-        M, C, K, _, _ = self.matrices(self.running_tensions() if tension is None else tension)
+        held = replace(self, mu=None)
+        M, C, K, _, _ = held.matrices(held.running_tensions() if tension is None else tension)
         d = M.shape[0]
         Mi = np.linalg.inv(M)
         A = np.block([[np.zeros((d, d)), np.eye(d)], [-Mi @ K, -Mi @ C]])
@@ -203,6 +215,11 @@ class Lumped:
             sr, vr = ref(t)
             drive = self.ki * (sr - q[0]) + self.kp * (vr - v[0])
             f[0] += drive
+            if self.mu is not None:
+                limit = (np.exp(self.mu * np.pi) - 1) * max(t0 + te[n], 0.0)
+                ff = float(np.clip(self.slip_damping * (v[0] - v[-1]), -limit, limit))
+                f[0] -= ff
+                f[-1] += ff
             return f, te, drive
 
         def rhs(t, y):
@@ -211,7 +228,7 @@ class Lumped:
 
         y = np.zeros(2 * d)
         steps = int(round(duration / dt))
-        rec = {k: [] for k in ("time", "travel", "T1", "T2", "drive", "speed")}
+        rec = {k: [] for k in ("time", "travel", "T1", "T2", "drive", "speed", "slip")}
         for k in range(steps + 1):
             t = k * dt
             if k % every == 0:
@@ -222,6 +239,7 @@ class Lumped:
                 rec["T2"].append(t0 + te[n])
                 rec["drive"].append(drive)
                 rec["speed"].append(y[d])
+                rec["slip"].append(y[-1] - y[d] if self.mu is not None else 0.0)
             k1 = rhs(t, y)
             k2 = rhs(t + dt / 2, y + dt / 2 * k1)
             k3 = rhs(t + dt / 2, y + dt / 2 * k2)

@@ -191,19 +191,12 @@ def test_steady_running_gearbox_shaft_torque_ripple_under_five_percent(which, re
     # phase; the builder's 0.196 m keeps the pitches off them (docs/wrap-contact.md,
     # "Session 11: the element length off the pitches").
     "case_g",
-    # Session 11 (tests/test_takeup_swing.py, docs/stops-takeups.md "The takeup's swing after
-    # a start"): 0.179 (`python benches/ripple_fixtures.py conveyor`; 0.189 reported before).
-    # The takeup's 0.57 Hz swing (+-31 mm, torque -10.4...+1.9 kN*m) has the frequency and
-    # decay of a lumped model written without the engine, not its amplitude: with the
-    # builder's 22 kN takeup the belt slides on the head drum through the whole ramp (T1/T2
-    # at e^(0.35 pi)) and re-grips at its end, a torque step of 12 kN*m. With a 30 kN takeup
-    # the drum grips, the swing is the lumped model's (1.1 kN*m) and the figure reads 0.018.
-    # The builder's grip rule leaves out the return strand's acceleration force in the start.
-    pytest.param("conveyor", marks=pytest.mark.xfail(
-        strict=True, reason="open: after the 4 s start, at the defaults 0.179 of the mean: the builder's 22 kN "
-        "takeup lets the belt slide on the head drum through the start (its grip rule leaves out the return "
-        "strand's acceleration force); the re-grip at the ramp's end starts the takeup's 0.57 Hz swing, which "
-        "reverses the torque. With a 30 kN takeup 0.018 (tests/test_takeup_swing.py)")),
+    # The 300 m conveyor's after-start case (0.179; 0.189 reported earlier in session 11) is
+    # tests/test_takeup_swing.py since session 11: its takeup swings at 0.57 Hz by +-31 mm
+    # and reverses the torque because with the builder's 22 kN takeup the belt slides on the
+    # head drum through the start and re-grips at its end (a lumped model with that slip
+    # gives the same swing; docs/stops-takeups.md, "The takeup's swing after a start"); with
+    # a 30 kN takeup that grips it reads 0.018.
 ])
 def test_drive_torque_ripple_after_a_four_second_start_under_five_percent(which, request):
     f = request.getfixturevalue(which)

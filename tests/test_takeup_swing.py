@@ -17,22 +17,23 @@ the engine's record of takeup travel, T1 and T2 10 m from the head over 16 s):
   force while the belt runs forward and damps nothing; the PI loop's K_p gives the lumped
   mode zeta = 1.7 %, the engine's swing decays at about 2.4 % (31, 23, 18, 15 mm in
   successive 3 s windows).
-- The amplitude is not the lumped model's: 31 mm of takeup travel and 5.9 kN*m of torque
-  in the engine after the start against 3.8 mm and 0.9 kN*m in the lumped model (3.8 to
-  14 mm for ramps of 3.6-4.4 s: the residual of a smooth start depends on where it ends in
-  the mode's cycle). The reason: the lumped model holds the belt on the head drum, and to
-  do so its T1/T2 reaches 3.88, beyond e^(mu_k pi) = 3.00 at the lagging's 0.35. The engine's
-  belt slides on the head drum through the whole ramp (T1/T2 10 m from the drum 2.92-2.98
-  from 0.5 s to 4 s), the drive's torque held at the friction limit (-12 to -16 kN*m), and
-  at the end of the ramp the belt catches up with the drum: the torque falls from -14.6 to
-  -2 kN*m within 0.4 s, a step that starts the 31 mm swing. That slip is what the physics
-  of this conveyor does with a 22 kN takeup: the builder's grip rule (Conveyor.takeup_tension,
-  DIN 22101's T2 >= F_A/(e^(mu theta) - 1)) takes the static slack-side tension at the drum,
+- The amplitude is the lumped model's once the belt may slide on the head drum: 31 mm of
+  takeup travel and 6.0 kN*m of torque in the engine after the start, 32 mm and 5.8 kN*m
+  in the lumped model with the capstan limit, against 3.8 mm and 0.9 kN*m with the belt
+  held on the drum (3.8 to 14 mm for ramps of 3.6-4.4 s: the residual of a smooth start
+  depends on where it ends in the mode's cycle). Held there, the lumped model's T1/T2
+  reaches 3.88, beyond e^(mu_k pi) = 3.00 at the lagging's 0.35. The engine's belt slides
+  on the head drum through the whole ramp (T1/T2 10 m from the drum 2.92-2.98 from 0.5 s
+  to 4 s), the drive's torque held at the friction limit (-12 to -16 kN*m), and at the end
+  of the ramp the belt catches up with the drum: the torque falls from -14.6 to -2 kN*m
+  within 0.4 s, a step that starts the 31 mm swing. That slip is what the physics of this
+  conveyor does with a 22 kN takeup: the builder's grip rule (Conveyor.takeup_tension, DIN
+  22101's T2 >= F_A/(e^(mu theta) - 1)) takes the static slack-side tension at the drum,
   the takeup tension less the return's running resistance, and leaves out the return
   strand's own acceleration force in the start (26.4 kg/m x 300 m x 0.785 m/s^2 = 6.2 kN),
-  which the takeup at the tail cannot supply to the drum: in the start T2 at the drum falls
-  to 13 kN. This is a design-rule gap of the builder (python/beltrs/conveyor.py, outside
-  this change; reported), not an error of the engine.
+  which the takeup at the tail cannot supply to the drum: in the start T2 at the drum
+  falls to 13 kN. This is a design-rule gap of the builder (python/beltrs/conveyor.py,
+  outside this change; reported), not an error of the engine.
 """
 
 from dataclasses import replace
@@ -46,6 +47,12 @@ from takeup_swing import Lumped, fit_swing, from_scene
 
 RAMP = 4.0
 MU_K = 0.35  # the builder's default lagging, kinetic
+
+
+def gripping_scene():
+    from beltrs.conveyor import TakeupSpec
+
+    return conveyor_300(ramp=RAMP, takeup=TakeupSpec(location="tail", tension=30e3)).scene()
 
 
 @pytest.fixture(scope="module")
@@ -85,8 +92,8 @@ def test_the_builders_takeup_cannot_hold_the_belt_on_the_drum_in_a_four_second_s
     grip = np.exp(MU_K * np.pi)
     r = lumped.start(2.0, RAMP, RAMP + 0.5)
     assert (r["T1"] / r["T2"]).max() > 1.2 * grip  # measured 3.88 against 3.00
-    r = replace(lumped, t0=30e3).start(2.0, RAMP, RAMP + 0.5)
-    assert (r["T1"] / r["T2"]).max() < grip  # measured 2.94
+    r = from_scene(gripping_scene(), 300.0, n=10).start(2.0, RAMP, RAMP + 0.5)
+    assert (r["T1"] / r["T2"]).max() < grip  # measured 2.91
 
 
 @pytest.fixture(scope="module")
@@ -148,28 +155,27 @@ def test_engine_belt_slides_on_the_head_drum_through_the_start(engine):
 @pytest.mark.slow
 def test_a_takeup_that_grips_the_start_leaves_the_lumped_models_swing_and_a_smooth_torque():
     """The same conveyor and start with a 30 kN takeup (``TakeupSpec(tension=30e3)``), with
-    which the lumped model keeps T1/T2 under e^(mu_k pi) (2.94): the belt stays on the drum,
+    which the lumped model keeps T1/T2 under e^(mu_k pi) (2.91): the belt stays on the drum,
     and the engine's swing after the start is the lumped model's. Measured (session 11,
     `python benches/ripple_fixtures.py conveyor --takeup 30000`): torque swing 0.642 Hz and
-    1.12 kN*m over 4.5-8.5 s against the lumped model's 0.632 Hz (its mode at the running
-    tensions) and 1.28 kN*m; the torque stays between -4.5 and -2.3 kN*m (mean -3.17) and
+    1.12 kN*m over 4.5-8.5 s against the lumped model's 0.629 Hz and 1.08 kN*m (its mode at
+    the running tensions 0.623 Hz; the 30 kN takeup's counterweight is 6116 kg);
+    the torque stays between -4.5 and -2.3 kN*m (mean -3.17) and
     the figure above 2 Hz after the start reads 0.018 (0.179 at the builder's 22 kN, where
     the drum slides through the start).
 
     Tolerances: frequency 5 % (the engine's own frequency moves by 8 % as a 31 -> 15 mm
     swing decays, at this 5 mm swing less); amplitude 30 % (the residual of a smooth start
     depends on the phase at which the ramp ends in the mode's cycle: in the lumped model
-    ramps of 3.8, 4.0 and 4.2 s leave 6.3, 3.8 and 7.3 mm, so a 1.5 % frequency difference
+    ramps of 3.8, 4.0 and 4.2 s leave 6.3, 3.8 and 7.3 mm, so a 2 % frequency difference
     moves it by tens of %); the after-start figure is the issue's 5 %."""
-    from beltrs.conveyor import TakeupSpec
     from conveyor_300 import measure, ripple_figures
 
-    c = conveyor_300(ramp=RAMP, takeup=TakeupSpec(location="tail", tension=30e3))
-    scene = c.scene()
-    model = replace(from_scene(scene, 300.0, n=10), t0=30e3)
+    scene = gripping_scene()
+    model = from_scene(scene, 300.0, n=10)
     r = model.start(2.0, RAMP, 9.0)
     f_model, a_model = fit_swing(r["time"], r["drive"] * scene.pulleys[1].radius, 4.5, 8.5)
-    assert model.modes()[0][0] == pytest.approx(0.632, abs=0.003)
+    assert model.modes()[0][0] == pytest.approx(0.623, abs=0.003)
     data = measure(beltrs.Simulation(scene), (290.0, 0.0), "head", 9.0)
     f_eng, a_eng = fit_swing(data["time"], data["torque"], 4.5, 8.5)
     assert f_eng == pytest.approx(model.modes()[0][0], rel=0.05)
@@ -177,3 +183,35 @@ def test_a_takeup_that_grips_the_start_leaves_the_lumped_models_swing_and_a_smoo
     fig = ripple_figures(data, 2.0, margin=1.0)
     assert fig["torque_max"] < 0, fig  # no reversal
     assert fig["torque_ripple"] < 0.05, fig
+
+
+@pytest.mark.slow
+def test_after_the_start_the_engines_swing_is_the_lumped_models_with_the_belt_sliding_on_the_drum(engine):
+    """The after-start case of tests/test_ripple.py at the builder's defaults (22 kN takeup),
+    as a test of its physics: the lumped model with the belt free to slide on the head drum
+    (capstan limit at the lagging's mu_k = 0.35, ``Lumped.mu``) against the engine, over
+    4.5-8.5 s. The drive torque's figure above 2 Hz there is 0.179 (`python
+    benches/ripple_fixtures.py conveyor`; 0.189 reported before the session's last merges),
+    the issue's 5 % not met: that is this swing, which reverses the torque (-10.4 to
+    +1.9 kN*m about -3.3 kN*m); a takeup that grips (30 kN, below) reads 0.018.
+
+    Measured: lumped 0.551 Hz, 32.3 mm of travel, 5.83 kN*m of torque, the torque falling
+    from 13.0 to 0.1 kN*m within 0.5 s of the ramp's end; engine 0.571 Hz, 31.2 mm, 0.575 Hz,
+    5.97 kN*m, -14.6 to -2.0 kN*m. Tolerances: frequency 8 % (the engine's own moves by 8 %
+    as the swing decays, above); amplitudes 25 %: the swing starts with the re-grip, whose
+    timing the lumped model's regularised stick (a 5 MN*s/m dashpot, creep up to 1 cm/s at
+    30 kN) and its ten elements per strand place only approximately; with a 3.6 s ramp the
+    two read 33.1 and 25.5 mm (30 % apart), at 4 s within 4 %."""
+    model = replace(from_scene(conveyor_300(ramp=RAMP).scene(), 300.0, n=10), mu=MU_K)
+    r = model.start(2.0, RAMP, 9.0)
+    fm, am = fit_swing(r["time"], r["travel"], 4.5, 8.5)
+    _, qm = fit_swing(r["time"], 0.4 * r["drive"], 4.5, 8.5)
+    t = engine["time"]
+    fe, ae = fit_swing(t, engine["travel"], 4.5, 8.5)
+    _, qe = fit_swing(t, engine["torque"], 4.5, 8.5)
+    assert fe == pytest.approx(fm, rel=0.08)
+    assert ae == pytest.approx(am, rel=0.25)
+    assert qe == pytest.approx(qm, rel=0.25)
+    # Without the slip the lumped model's swing is 8x smaller: the slip is the mechanism.
+    held = replace(model, mu=None).start(2.0, RAMP, 9.0)
+    assert fit_swing(held["time"], held["travel"], 4.5, 8.5)[1] < ae / 4
