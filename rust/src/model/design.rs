@@ -399,6 +399,15 @@ pub(super) fn place(
     // joints, `belt::rigid::wrap_joint`, change only the joint that meets a strand).
     let rigid = belt.formulation == crate::scene::Formulation::RigidBody;
     let wrap_contact = belt.pulley_contact == crate::scene::PulleyContact::Wrap && !rigid;
+    // The rigid belt's wrap joints (`belt::rigid::wrap_joint`): the boundary joints stand off
+    // along the drums (`design_rigid::wrap_offsets`).
+    let wrap_joints = belt.pulley_contact == crate::scene::PulleyContact::Wrap && rigid;
+    let drums: Vec<(V2, f64)> = scene
+        .pulleys
+        .iter()
+        .filter(|p| p.contact_stiffness > 0.0 && p.nonlinear_contact.is_none())
+        .map(|p| (V2::new(p.center[0], p.center[1]), p.radius))
+        .collect();
     let sink_wraps: &[ContactWrap] = if wrap_contact || rigid { &[] } else { &wraps };
     // With wrap contact on the rolls (`belt.idler_contact = "wrap"`, `contact::roll_wrap`)
     // the belt bends over each roll at the roll, and an element over one is as long as its
@@ -575,6 +584,14 @@ pub(super) fn place(
                 factor[e] = 0.5 * (1.0 / cosines[e] + 1.0 / cosines[(e + 1) % n]);
             }
         }
+        if wrap_joints {
+            // Each wrap joint's body B takes its stand-off x·(t_C·t_B) on its chord.
+            let (_, angles) = super::design_rigid::bodies(&positions);
+            extra.iter_mut().for_each(|e| *e = 0.0);
+            for (b, _, x, tc) in super::design_rigid::wrap_offsets(&positions, l0, &drums) {
+                extra[b] = x * tc.dot(&V2::new(angles[b].cos(), angles[b].sin()));
+            }
+        }
         if !sink_wraps.is_empty() {
             for e in 0..n {
                 let chord = (positions[(e + 1) % n] - positions[e]).norm();
@@ -684,7 +701,17 @@ fn rigid_placement(
     vertices: &[V2],
     speed: f64,
 ) -> DesignPlacement {
-    let (centres, angles) = super::design_rigid::bodies(vertices);
+    let (mut centres, mut angles) = super::design_rigid::bodies(vertices);
+    if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
+        let drums: Vec<(V2, f64)> = scene
+            .pulleys
+            .iter()
+            .filter(|p| p.contact_stiffness > 0.0 && p.nonlinear_contact.is_none())
+            .map(|p| (V2::new(p.center[0], p.center[1]), p.radius))
+            .collect();
+        let offsets = super::design_rigid::wrap_offsets(vertices, l0, &drums);
+        super::design_rigid::stand_off(&mut centres, &mut angles, l0, &offsets);
+    }
     let axis = |k: usize| V2::new(angles[k].cos(), angles[k].sin());
     let velocity = (0..n).map(|k| axis(k) * speed).collect();
     let body_spin: Vec<f64> = (0..n)

@@ -87,6 +87,78 @@ pub(crate) fn bodies(vertices: &[V2]) -> (Vec<V2>, Vec<f64>) {
         .unzip()
 }
 
+/// The rigid belt's wrap joints (`belt::rigid::wrap_joint`) on the closed chain of bodies of
+/// length `l0` (m) placed on `vertices` (body k from vertex k to k + 1), on the drums
+/// (centre, radius) `drums`: for each boundary joint, (B, side, x, t_C) — the body whose end
+/// stands off the drum's body's by side·x·t_C.
+pub(crate) fn wrap_offsets(
+    vertices: &[V2],
+    l0: f64,
+    drums: &[(V2, f64)],
+) -> Vec<(usize, f64, f64, V2)> {
+    use crate::belt::rigid::sdes::{LinkState, SdeParams};
+    let n = vertices.len();
+    let (centres, angles) = bodies(vertices);
+    let links = |i: usize| LinkState {
+        position: centres[i],
+        angle: angles[i],
+        velocity: V2::zeros(),
+        angular_velocity: 0.0,
+        length: l0,
+    };
+    let params = |_: usize| SdeParams {
+        translational_stiffness: 1.0,
+        translational_damping: 0.0,
+        torsional_stiffness: 0.0,
+        torsional_damping: 0.0,
+    };
+    let mut out = Vec::new();
+    for &(center, radius) in drums {
+        crate::belt::rigid::wrap_joint::for_each_wrap(
+            &links,
+            n,
+            true,
+            0,
+            n,
+            center,
+            radius,
+            &params,
+            |a| {
+                out.push((a.slider(), a.side(), a.load.offset, a.load.tangent));
+            },
+        );
+    }
+    out
+}
+
+/// Move each wrap joint's body B (`offsets` of [`wrap_offsets`]) so that its end at the
+/// joint stands off the drum's body's by side·x·t_C and its other end keeps its joint's
+/// gap: the walk gave B's chord x·(t_C·t_B) more, half at each end.
+pub(crate) fn stand_off(
+    centres: &mut [V2],
+    angles: &mut [f64],
+    l0: f64,
+    offsets: &[(usize, f64, f64, V2)],
+) {
+    for &(b, side, x, tc) in offsets {
+        let tb = V2::new(angles[b].cos(), angles[b].sin());
+        let half = tb * (0.5 * l0);
+        let (left, right) = (centres[b] - half, centres[b] + half);
+        let along = x * tc.dot(&tb);
+        let at_joint = (tc * x - tb * (0.5 * along)) * side;
+        let at_far = tb * (0.5 * along * side);
+        // Entering (side −1): B's right end is at the joint; leaving: its left end.
+        let (left, right) = if side < 0.0 {
+            (left + at_far, right + at_joint)
+        } else {
+            (left + at_joint, right + at_far)
+        };
+        let d = right - left;
+        centres[b] = 0.5 * (left + right);
+        angles[b] = d.y.atan2(d.x);
+    }
+}
+
 /// cos(α_k/2) at each vertex k of a closed polygon (α_k the turn between chord k−1 and
 /// chord k).
 pub(crate) fn half_turn_cosines(vertices: &[V2]) -> Vec<f64> {

@@ -94,17 +94,21 @@ pub fn chain(cx: &mut StageContext<'_>) {
     }
 }
 
-/// Each drum's active wrap joints (`super::wrap_joint`), searched in the drum's contact
-/// window of the last evaluation (it holds every body within 1.5 l of the circle).
-fn wrap_joints(m: &Model, s: &State, sc: &mut crate::pipeline::Scratch, damped: bool) {
+/// Every active wrap joint of every drum (`super::wrap_joint`), searched in the drum's
+/// contact window of the last evaluation (it holds every body within 1.5 l of the circle):
+/// `visit(pulley, joint, links, joint parameters)`.
+fn for_each_drum_wrap(
+    m: &Model,
+    s: &State,
+    damped: bool,
+    mut visit: impl FnMut(
+        usize,
+        &super::wrap_joint::ActiveWrap,
+        &dyn Fn(usize) -> LinkState,
+        &dyn Fn(usize) -> SdeParams,
+    ),
+) {
     let n = m.nodes;
-    sc.wrap_slide.clear();
-    let (force, torque, tension, slide) = (
-        &mut sc.force,
-        &mut sc.body_torque,
-        &mut sc.tension,
-        &mut sc.wrap_slide,
-    );
     let closed = m.elements == n;
     let links = |i: usize| link(m, s, i);
     let sdes = |e: usize| params(m, e, damped);
@@ -112,22 +116,36 @@ fn wrap_joints(m: &Model, s: &State, sc: &mut crate::pipeline::Scratch, damped: 
         if p.contact_stiffness == 0.0 || !m.rests_on_ends(j) {
             continue;
         }
+        // Before the first contact evaluation the window is empty: the whole chain then.
         let w = s.pulley_window[j];
+        let (first, len) = if w.len == 0 { (0, n) } else { (w.first, w.len) };
         super::wrap_joint::for_each_wrap(
             &links,
             n,
             closed,
-            w.first,
-            w.len,
+            first,
+            len,
             s.pulley_center(m, j),
             p.radius,
             &sdes,
-            |a| {
-                super::wrap_joint::apply(&a, &links, &sdes(a.joint), force, torque, tension);
-                slide.push((j, a.slider(), a.load.slide));
-            },
+            |a| visit(j, &a, &links, &sdes),
         );
     }
+}
+
+/// Each drum's active wrap joints' forces, and which body each lets slide on the drum.
+fn wrap_joints(m: &Model, s: &State, sc: &mut crate::pipeline::Scratch, damped: bool) {
+    sc.wrap_slide.clear();
+    let (force, torque, tension, slide) = (
+        &mut sc.force,
+        &mut sc.body_torque,
+        &mut sc.tension,
+        &mut sc.wrap_slide,
+    );
+    for_each_drum_wrap(m, s, damped, |j, a, links, sdes| {
+        super::wrap_joint::apply(a, links, &sdes(a.joint), force, torque, tension);
+        slide.push((j, a.slider(), a.load.slide));
+    });
 }
 
 /// The wrap joints' energy less the plain joints' they replace (½c_x(|g|² − |d|²) summed),
@@ -136,32 +154,12 @@ pub fn wrap_energy(m: &Model, s: &State) -> f64 {
     if !m.rigid_wrap {
         return 0.0;
     }
-    let n = m.nodes;
-    let closed = m.elements == n;
-    let links = |i: usize| link(m, s, i);
-    let sdes = |e: usize| params(m, e, false);
     let mut total = 0.0;
-    for (j, p) in m.pulleys.iter().enumerate() {
-        if p.contact_stiffness == 0.0 || !m.rests_on_ends(j) {
-            continue;
-        }
-        let w = s.pulley_window[j];
-        super::wrap_joint::for_each_wrap(
-            &links,
-            n,
-            closed,
-            w.first,
-            w.len,
-            s.pulley_center(m, j),
-            p.radius,
-            &sdes,
-            |a| {
-                let (l, r) = (links(a.left), links(a.right));
-                let d = (r.position - r.half_vector()) - (l.position + l.half_vector());
-                total += a.load.energy - 0.5 * m.axial_stiffness[a.joint] * d.norm_squared();
-            },
-        );
-    }
+    for_each_drum_wrap(m, s, false, |_, a, links, _| {
+        let (l, r) = (links(a.left), links(a.right));
+        let d = (r.position - r.half_vector()) - (l.position + l.half_vector());
+        total += a.load.energy - 0.5 * m.axial_stiffness[a.joint] * d.norm_squared();
+    });
     total
 }
 

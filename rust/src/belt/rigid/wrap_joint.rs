@@ -143,6 +143,8 @@ pub struct WrapLoad {
     pub torque_on_right: f64,
     /// ½c_x|g|², J.
     pub energy: f64,
+    /// t_C: the drum's tangent at the joint in the bodies' order.
+    pub tangent: V2,
     /// B's velocity against the drum's surface per unit of the drum's angular velocity
     /// that the offset asks for, m/rad (the friction's lever for B takes it in:
     /// `crate::contact::pulley_body_contact`).
@@ -236,6 +238,7 @@ pub fn wrap_joint(
         torque_on_left,
         torque_on_right,
         energy: 0.5 * p.translational_stiffness * length * length,
+        tangent: tc,
         slide: tc * (side * dx * dbend),
     })
 }
@@ -264,6 +267,14 @@ impl ActiveWrap {
         match self.role {
             Role::Entering => self.left,
             Role::Leaving => self.right,
+        }
+    }
+
+    /// −1 entering, +1 leaving: B's end at the joint stands off A's by side·x·t_C.
+    pub fn side(&self) -> f64 {
+        match self.role {
+            Role::Entering => -1.0,
+            Role::Leaving => 1.0,
         }
     }
 }
