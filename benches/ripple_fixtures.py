@@ -30,6 +30,12 @@ whole numbers per idler pitch): case G 0.018 motor, 0.032 gearbox shaft (0.2 m: 
 the 9.96 Hz cogging line), 300 m 0.011, 0.013; after the 4 s start case G 0.044:
 
     python benches/ripple_fixtures.py case_g --start running --steady 8 --windows 2 --spectrum 6
+
+The 300 m conveyor's takeup tension (``--takeup`` N per strand; the builder's 22 kN by
+default, with which the belt slides on the head drum through the 4 s start): session 11,
+0.179 at 22 kN, 0.018 at 30 kN (tests/test_takeup_swing.py, docs/stops-takeups.md):
+
+    python benches/ripple_fixtures.py conveyor --takeup 30000
 """
 
 from __future__ import annotations
@@ -81,6 +87,9 @@ def main(argv=None) -> int:
                     help="rest: the test's start (case G stabilised at rest, the 300 m from its design state at "
                          "rest) then the ramp; running: the builder's running design start (steady-running "
                          "tensions, belt at speed, no ramp), the --steady s at speed measured")
+    ap.add_argument("--takeup", type=float, default=None,
+                    help="conveyor only: the takeup tension per strand, N (default: the builder's grip and sag rule, "
+                         "22 kN); e.g. 30000 grips the head drum through the whole 4 s start")
     ap.add_argument("--save", help="write the measured record (time, tension, torque, ...) to this .npz")
     a = ap.parse_args(argv)
 
@@ -117,6 +126,10 @@ def main(argv=None) -> int:
     else:
         kw = {} if a.element is None else {"element_length": a.element}
         kw.update(running)
+        if a.takeup is not None:
+            from beltrs.conveyor import TakeupSpec
+
+            kw["takeup"] = TakeupSpec(location="tail", tension=a.takeup)
         if a.speed is None:
             c = conveyor_300(ramp=a.ramp, **kw)
         else:
@@ -144,7 +157,7 @@ def main(argv=None) -> int:
              rms_above_2hz=g["rms_abs"], bands=g["bands"], lines_hz=g["lines_hz"], dt_us=sim.dt * 1e6,
              wall_s=time.perf_counter() - t0, drum_friction=a.drum_friction, pi=a.pi, control=a.control,
              start=a.start, ramp=a.ramp, steady=a.steady,
-             element=a.element, speed=a.speed, nodes=sim.nodes)
+             element=a.element, speed=a.speed, nodes=sim.nodes, takeup=a.takeup)
     if a.windows:
         f.update(windows=window_figures(data["time"], data["torque"], a.windows),
                  lines=lines(data["time"], data["torque"], a.spectrum))
