@@ -728,7 +728,12 @@ class Conveyor:
           start force M_eq · a_max + F_U (:meth:`start_force`) less the motors' part of
           M_eq (a rotor is accelerated through its own shaft, not through the drum's grip
           on the belt), µ the lagging's kinetic coefficient and θ = π (a simple head or
-          tail drum);
+          tail drum), and T2 the slack side's tension in the start: its steady-running
+          value less a_max times the moving mass the belt carries from the drive's slack
+          side to the takeup (the strand between them is accelerated by that tension
+          difference, and the takeup holds only its own end: a head drive's return strand
+          with its rolls to a tail takeup; DIN 22101 takes the start's tension distribution
+          the same way);
         * sag between idlers: T ≥ (m'_G + m'_L) · g · a / (8 · h_rel) on the carry strand
           and m'_G · g · a_r / (8 · h_rel) on the return strand, h_rel = 1 % of the pitch;
 
@@ -742,9 +747,11 @@ class Conveyor:
         grip = math.exp(self.lagging[1] * math.pi) - 1
         starting = max(1.5 * p.effective, self._rigid_start(self._moving_mass_without_motors(), p.effective))
         share = {d.location: d.share for d in self.drives}
+        a_max = max(self._peak_acceleration(d) for d in self.drives)
         raise_by = 0.0
         for d in p.drives:
-            raise_by = max(raise_by, share[d.name] * starting / grip - d.slack)
+            slack = d.slack - a_max * self._mass_to_takeup(d.name)
+            raise_by = max(raise_by, share[d.name] * starting / grip - slack)
         h = 0.01
         sag_carry = (self.belt_mass + self.material_mass) * g * self.carry.pitch / (8 * h)
         sag_return = self.belt_mass * g * self.returns.pitch / (8 * h)
@@ -1070,6 +1077,20 @@ class Conveyor:
                        + self.returns.rotating_mass * prof.length / self.returns.pitch)
         drums = 2 * 0.8 * self._drum_mass()
         return belt + material + rolls + drums
+
+    def _mass_to_takeup(self, drive: str) -> float:
+        """Moving mass on the belt's path from ``drive``'s slack side to the takeup, kg
+        (belt, material, rolls at 0.8 of their rotating mass, as in the start force): none
+        where both are at the same drum; a head drive's return strand to a tail takeup; a
+        tail drive's carry strand, with its material, to a head takeup."""
+        if drive == self.takeup.location:
+            return 0.0
+        length = self.carry_profile.length
+        if drive == "head":
+            return (self.belt_mass + 0.8 * self.returns.rotating_mass / self.returns.pitch) * length
+        discharge = length if self.discharge is None else float(self.discharge)
+        return ((self.belt_mass + 0.8 * self.carry.rotating_mass / self.carry.pitch) * length
+                + self.material_mass * (discharge - float(self.loading)))
 
     def _motors_mass(self, powers: dict[str, float]) -> float:
         """The drives' high-speed shafts reduced to the belt line, kg: I·ratio²/r²."""
