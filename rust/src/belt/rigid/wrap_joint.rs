@@ -558,26 +558,19 @@ mod tests {
         let b = 3e4;
         for &theta in &[-0.2, 0.0, 0.2] {
             let s = entering(theta, 2e-4);
-            let damped = wrap_joint(
-                &s[0],
-                &s[1],
-                &s[2],
-                Role::Entering,
-                V2::zeros(),
-                &w,
-                &sdes(b),
-            )
-            .unwrap();
-            let elastic = wrap_joint(
-                &s[0],
-                &s[1],
-                &s[2],
-                Role::Entering,
-                V2::zeros(),
-                &w,
-                &sdes(0.0),
-            )
-            .unwrap();
+            let load = |damping: f64| {
+                wrap_joint(
+                    &s[0],
+                    &s[1],
+                    &s[2],
+                    Role::Entering,
+                    V2::zeros(),
+                    &w,
+                    &sdes(damping),
+                )
+                .unwrap()
+            };
+            let (damped, elastic) = (load(b), load(0.0));
             let power = |j: &WrapLoad| {
                 -j.force_on_right.dot(&s[0].velocity)
                     + j.torque_on_left * s[0].angular_velocity
