@@ -265,7 +265,12 @@ pub(super) fn read_state(r: &mut Reader<'_>) -> Decoded<State> {
         (0..n)
             .map(|_| {
                 let m = r.len("sliding points", 8)?;
-                (0..m).map(|_| r.usize("sliding point")).collect()
+                // Ascending, as the friction solve writes and reads them.
+                let mut list = (0..m)
+                    .map(|_| r.usize("sliding point"))
+                    .collect::<Decoded<Vec<usize>>>()?;
+                list.sort_unstable();
+                Ok(list)
             })
             .collect::<Decoded<Vec<Vec<usize>>>>()?
     } else {

@@ -487,8 +487,9 @@ fn static_limits(
     scratch.limit.clear();
     scratch.slid.clear();
     if dt.is_finite() && !scratch.sliding.is_empty() {
-        scratch.sliding.sort_unstable();
+        // Ascending: `apply` writes it so, and a checkpoint's lists are sorted on reading.
         let before = &scratch.sliding;
+        debug_assert!(before.windows(2).all(|w| w[0] <= w[1]));
         scratch.slid.extend(
             contacts
                 .node
