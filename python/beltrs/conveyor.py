@@ -1068,29 +1068,31 @@ class Conveyor:
         return self._moving_mass_without_motors() + self._motors_mass(self._powers())
 
     def _moving_mass_without_motors(self) -> float:
-        prof = self.carry_profile
         r = self.radius
-        discharge = prof.length if self.discharge is None else float(self.discharge)
-        belt = self.belt_mass * (2 * prof.length + 2 * math.pi * r)
-        material = self.material_mass * (discharge - float(self.loading))
-        rolls = 0.8 * (self.carry.rotating_mass * prof.length / self.carry.pitch
-                       + self.returns.rotating_mass * prof.length / self.returns.pitch)
+        wraps = self.belt_mass * 2 * math.pi * r
         drums = 2 * 0.8 * self._drum_mass()
-        return belt + material + rolls + drums
+        return self._strand_mass("carry") + self._strand_mass("return") + wraps + drums
+
+    def _strand_mass(self, strand: str) -> float:
+        """Moving mass of one strand reduced to the belt line, kg: its belt, its idler rolls
+        at 0.8 of their rotating mass per pitch (thin tubes, I/r²) and, on the carry strand,
+        the material from loading to discharge."""
+        length = self.carry_profile.length
+        idlers = self.carry if strand == "carry" else self.returns
+        mass = (self.belt_mass + 0.8 * idlers.rotating_mass / idlers.pitch) * length
+        if strand == "carry":
+            discharge = length if self.discharge is None else float(self.discharge)
+            mass += self.material_mass * (discharge - float(self.loading))
+        return mass
 
     def _mass_to_takeup(self, drive: str) -> float:
         """Moving mass on the belt's path from ``drive``'s slack side to the takeup, kg
-        (belt, material, rolls at 0.8 of their rotating mass, as in the start force): none
-        where both are at the same drum; a head drive's return strand to a tail takeup; a
-        tail drive's carry strand, with its material, to a head takeup."""
+        (:meth:`_strand_mass`, as in the start force): none where both are at the same drum;
+        a head drive's return strand to a tail takeup; a tail drive's carry strand, with its
+        material, to a head takeup."""
         if drive == self.takeup.location:
             return 0.0
-        length = self.carry_profile.length
-        if drive == "head":
-            return (self.belt_mass + 0.8 * self.returns.rotating_mass / self.returns.pitch) * length
-        discharge = length if self.discharge is None else float(self.discharge)
-        return ((self.belt_mass + 0.8 * self.carry.rotating_mass / self.carry.pitch) * length
-                + self.material_mass * (discharge - float(self.loading)))
+        return self._strand_mass("return" if drive == "head" else "carry")
 
     def _motors_mass(self, powers: dict[str, float]) -> float:
         """The drives' high-speed shafts reduced to the belt line, kg: I·ratio²/r²."""
