@@ -20,7 +20,7 @@ class _NoBar:
 class _TextBar:
     """One line on stderr, redrawn at most ten times a second."""
 
-    def __init__(self, total: int, t_end: float, stream: TextIO) -> None:
+    def __init__(self, total: int, t_end: Optional[float], stream: TextIO) -> None:
         self.total = max(int(total), 1)
         self.t_end = t_end
         self.stream = stream
@@ -44,9 +44,15 @@ class _TextBar:
         elapsed = now - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
         eta = (self.total - self.done) / rate if rate > 0 else float("nan")
+        if self.t_end is None:  # a relaxation: the total is its step budget, not its length
+            where = f"relaxing, step {self.done:,} of at most {self.total:,}"
+            left = f"at most {eta:.0f} s left"
+        else:
+            where = f"t = {self.sim_time:.4g}/{self.t_end:.4g} s"
+            left = f"ETA {eta:.0f} s"
         self.stream.write(
             f"\rbeltrs {100 * frac:5.1f}% |{'#' * filled}{' ' * (width - filled)}| "
-            f"t = {self.sim_time:.4g}/{self.t_end:.4g} s, {rate:,.0f} steps/s, ETA {eta:.0f} s "
+            f"{where}, {rate:,.0f} steps/s, {left} "
         )
         self.stream.flush()
 
@@ -57,21 +63,24 @@ class _TextBar:
 
 
 class _TqdmBar:
-    def __init__(self, tqdm: Any, total: int, t_end: float) -> None:
-        self.bar = tqdm(total=int(total), unit="step", unit_scale=True, desc="beltrs", leave=True)
+    def __init__(self, tqdm: Any, total: int, t_end: Optional[float]) -> None:
+        desc = "beltrs" if t_end is not None else "beltrs relaxing (step budget)"
+        self.bar = tqdm(total=int(total), unit="step", unit_scale=True, desc=desc, leave=True)
         self.t_end = t_end
 
     def update(self, steps: int, sim_time: float) -> None:
-        self.bar.set_postfix_str(f"t = {sim_time:.4g}/{self.t_end:.4g} s", refresh=False)
+        if self.t_end is not None:
+            self.bar.set_postfix_str(f"t = {sim_time:.4g}/{self.t_end:.4g} s", refresh=False)
         self.bar.update(int(steps))
 
     def close(self) -> None:
         self.bar.close()
 
 
-def make_bar(progress: Optional[bool], total: int, t_end: float) -> Any:
+def make_bar(progress: Optional[bool], total: int, t_end: Optional[float]) -> Any:
     """The bar to use: ``progress`` True/False forces it on/off; None shows it only when
-    stderr is a terminal. tqdm is used if it can be imported."""
+    stderr is a terminal. tqdm is used if it can be imported. ``total`` steps; ``t_end`` the
+    run's end time, s, or None for a relaxation (no time to show; ``total`` is its budget)."""
     if progress is None:
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not progress:

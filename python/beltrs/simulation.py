@@ -365,7 +365,7 @@ class Simulation:
                 progress = True
             if progress is None:
                 progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-            bar = make_bar(progress, max_steps, self.time)
+            bar = make_bar(progress, max_steps, None)
             now = self.time  # the callback runs inside the engine's call: no calls back into it
             shown = [0]
 
