@@ -18,8 +18,8 @@ its starting curve. The paper (Guo & Wang 2020, Table 1) gives: 972 m, 400 t/h a
   rolls, inertia 0.8 m r^2, DIN 22101 f = 0.02 on every idler, belt-roll friction 0.5;
 - material from 5 m after the tail centre to the head, constant kg per metre of belt;
 - a variable-speed drive: PI speed controller (default gains) with a torque limit of 1.6 x
-  rated (48 kN*m at the drum; gearbox ratio 20.9), motor inertia 4.88 kg*m^2 (the catalogue
-  law of docs/drives.md; 2139 kg*m^2 at the drum).
+  rated (48 kN*m at the drum; gearbox ratio 20.9), motor inertia 4.88 kg*m^2 (assumed:
+  session 10's catalogue law, docs/drives.md; 2139 kg*m^2 at the drum).
 
 Prints the peak tension 10 m before the head on the carry strand (the paper's sensor
 position), below 2 Hz as well (the raw value carries the node model's

@@ -27,9 +27,10 @@ def start(control, **kw):
 
 # Both drives, with the same laws: the builder's default since session 10, the VFD (a PI
 # speed loop, the motor's rotor on the drum: 4.88 kg·m² through the gearbox, 2139 kg·m² at
-# the drum), and the ideal speed follower (control="ideal"), which holds the drum exactly on
-# the start curve. DIN 22101's steady running and CEMA's momentum law do not depend on what
-# turns the drum; the VFD on this scene beyond them: tests/test_ripple.py, docs/drives.md.
+# the drum; case G's assumed rotor, session 10's catalogue law, scenes.GUO_WANG), and the
+# ideal speed follower (control="ideal"), which holds the drum exactly on the start curve.
+# DIN 22101's steady running and CEMA's momentum law do not depend on what turns the drum;
+# the VFD on this scene beyond them: tests/test_ripple.py, docs/drives.md.
 @pytest.fixture(scope="module", params=["vfd", "ideal"])
 def control(request):
     return request.param

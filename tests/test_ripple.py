@@ -62,7 +62,9 @@ start, the builder's grip rule leaving out the return strand's acceleration forc
 takeup grips and reads 0.018 after the start. The rule now counts that force (lead, session
 11): the builder chooses 28 kN, and the 300 m reads 0.029 after the start (torque -4.39 ...
 -2.06 kN*m, no reversal), 0.0093 motor and 0.0107 shaft in steady running. Every ripple
-target of the issue is then met at the defaults on both conveyors.
+target of the issue is then met at the defaults on both conveyors. Session 12's motor-inertia
+law (docs/drives.md; the 300 m's motor 63 kW and 0.99 kg*m^2 instead of 61 kW and 0.81):
+0.029 after the start (-4.40 ... -2.04 kN*m), 0.0095 motor and 0.0105 shaft in steady running.
 """
 
 from dataclasses import replace
@@ -166,7 +168,7 @@ def test_steady_running_drive_torque_ripple_under_five_percent(which, request):
     stick-slip law, case G's element length off its pitches): 0.018 and 0.011; ideal
     follower 0.075 (case G: its head drum's last node breaking away from mu_s, a slip arc
     shorter than a node, docs/wrap-contact.md) and 0.020. The 300 m at the 28 kN takeup of
-    the builder's grip rule since session 11: 0.0093."""
+    the builder's grip rule since session 11: 0.0093; with session 12's motor law 0.0095."""
     f = request.getfixturevalue(which)
     assert f["torque_mean"] < 0, f
     assert f["torque_ripple"] < 0.05, f
@@ -179,7 +181,8 @@ def test_steady_running_gearbox_shaft_torque_ripple_under_five_percent(which, re
     drum, the motor's torque less what accelerates the rotor (tests/conveyor_300.py
     ``shaft_torque``). Measured (session 11, `python benches/ripple_fixtures.py
     {case_g|conveyor} --start running`, its ``shaft_ripple``): case G 0.032, 300 m 0.013
-    (0.0107 at the 28 kN takeup of the builder's grip rule since session 11).
+    (0.0107 at the 28 kN takeup of the builder's grip rule since session 11; 0.0105 with
+    session 12's motor law).
     Case G read 0.051 (a strict xfail) with 0.2 m elements, its 1.2 m and 3 m idler pitches
     whole numbers of them: the rolls' gravity cogging added up in phase, a 9.96 Hz line of
     40.6 N*m. Its builder now takes 0.196 m (6.125 and 15.3125 per pitch,
@@ -198,7 +201,8 @@ def test_steady_running_gearbox_shaft_torque_ripple_under_five_percent(which, re
     "case_g",
     # Measured 0.029 (session 11, lead: `python benches/ripple_fixtures.py conveyor`; torque
     # -4.39 ... -2.06 kN*m about -3.12 kN*m) at the 28 kN takeup the builder's grip rule
-    # chooses since it counts the return strand's start force. With the 22 kN it chose
+    # chooses since it counts the return strand's start force (session 12's motor law, 63 kW
+    # and 0.99 kg*m^2: 0.029, -4.40 ... -2.04 kN*m). With the 22 kN it chose
     # before: 0.179 (0.189 earlier in session 11), the belt sliding on the head drum through
     # the start and re-gripping at its end, the takeup swinging at 0.57 Hz by +-31 mm and
     # reversing the torque (tests/test_takeup_swing.py, docs/stops-takeups.md, "The takeup's

@@ -164,7 +164,9 @@ def test_engine_belt_slides_on_the_head_drum_through_the_start(engine):
     tq = engine["torque"]
     at_end = tq[np.argmin(abs(t - RAMP))]
     after = tq[np.argmin(abs(t - RAMP - 0.5))]
-    assert at_end < -12e3 and after > -6e3  # measured -14.6 and -2 kN*m
+    # measured -14.6 and -2 kN*m (session 11); -14.7 and +0.3 with session 12's motor law
+    # (63 kW and 0.99 kg*m^2 instead of 61 kW and 0.81: the swing's phase at 0.5 s moves)
+    assert at_end < -12e3 and after > -6e3
 
 
 @pytest.mark.slow
@@ -177,7 +179,9 @@ def test_a_takeup_that_grips_the_start_leaves_the_lumped_models_swing_and_a_smoo
     the running tensions 0.623 Hz; the 30 kN takeup's counterweight is 6116 kg);
     the torque stays between -4.5 and -2.3 kN*m (mean -3.17) and
     the figure above 2 Hz after the start reads 0.018 (0.179 at the builder's 22 kN, where
-    the drum slides through the start).
+    the drum slides through the start). Session 12's motor law (63 kW, 0.99 kg*m^2): engine
+    0.642 Hz and 1.14 kN*m, lumped 0.629 Hz and 1.10 kN*m (mode 0.624 Hz), torque -4.57 to
+    -2.27 kN*m (mean -3.17), figure 0.0185.
 
     Tolerances: frequency 5 % (the engine's own frequency moves by 8 % as a 31 -> 15 mm
     swing decays, at this 5 mm swing less); amplitude 30 % (the residual of a smooth start
@@ -213,7 +217,9 @@ def test_after_the_start_the_engines_swing_is_the_lumped_models_with_the_belt_sl
 
     Measured: lumped 0.551 Hz, 32.3 mm of travel, 5.83 kN*m of torque, the torque falling
     from 13.0 to 0.1 kN*m within 0.5 s of the ramp's end; engine 0.571 Hz, 31.2 mm, 0.575 Hz,
-    5.97 kN*m, -14.6 to -2.0 kN*m. Tolerances: frequency 8 % (the engine's own moves by 8 %
+    5.97 kN*m, -14.6 to -2.0 kN*m. Session 12's motor law (the builder's motor 63 kW and
+    0.99 kg*m^2 instead of 61 kW and 0.81): lumped 0.552 Hz, 32.4 mm, 5.85 kN*m; engine
+    0.571 Hz, 31.3 mm, 0.575 Hz, 5.99 kN*m, -14.7 to +0.3 kN*m. Tolerances: frequency 8 % (the engine's own moves by 8 %
     as the swing decays, above); amplitudes 25 %: the swing starts with the re-grip, whose
     timing the lumped model's regularised stick (a 5 MN*s/m dashpot, creep up to 1 cm/s at
     30 kN) and its ten elements per strand place only approximately; with a 3.6 s ramp the

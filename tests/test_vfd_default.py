@@ -6,8 +6,10 @@ rust/tests/speed_control.rs)."""
 
 from __future__ import annotations
 
+import csv
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,14 +22,21 @@ from beltrs.scenes import GUO_WANG, guo_wang_conveyor
 
 RPM = 2 * math.pi / 60
 
-# The catalogue points of docs/drives.md, "Motor inertia: the catalogue law":
-# (kW, rpm, J kg*m^2).
-CATALOGUE = [
-    (0.75, 2900, 0.0010), (1.1, 2900, 0.0011), (1.5, 2900, 0.0014), (1.5, 2900, 0.0018), (2.2, 2900, 0.0021),
-    (3, 2910, 0.0052), (4, 2930, 0.0071), (5.5, 2920, 0.0080), (5.5, 2950, 0.0165), (7.5, 2940, 0.0187),
-    (9.2, 2950, 0.0222), (11, 2950, 0.0250), (11, 2960, 0.0451), (15, 2960, 0.0501), (18.5, 2955, 0.0605),
-    (22, 2970, 0.1120), (0.75, 1430, 0.0033), (0.75, 1445, 0.00261), (22, 1465, 0.155),
-]
+# The makers' catalogue rows of docs/drives.md, "Motor inertia: the catalogue law", each with its
+# source (the file's header names them in full): SOGA MT3, WAT/TECO MTF, Sgath and Motive Delphi,
+# IEC low-voltage cage motors, 2-8 poles, 0.75-315 kW.
+CATALOGUE_CSV = Path(__file__).parent / "data" / "motor_inertia_catalogue.csv"
+
+
+def catalogue() -> list[dict[str, str]]:
+    with CATALOGUE_CSV.open(encoding="utf-8") as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def catalogue_torque_and_inertia() -> tuple[np.ndarray, np.ndarray]:
+    rows = catalogue()
+    t = np.array([float(r["kW"]) * 1e3 / (float(r["rpm"]) * RPM) for r in rows])
+    return t, np.array([float(r["J_kgm2"]) for r in rows])
 
 
 def conveyor(**drive) -> Conveyor:
@@ -40,19 +49,57 @@ def head_drive(c: Conveyor) -> beltrs.Drive:
     return next(p.drive for p in c.scene().pulleys if p.drive is not None)
 
 
+def test_catalogue_rows_name_their_source():
+    rows = catalogue()
+    assert len(rows) == 133
+    assert {r["source"] for r in rows} == {"soga_mt3", "wat_mtf", "sgath", "motive_delphi"}
+    header = CATALOGUE_CSV.read_text(encoding="utf-8")
+    for key in ("soga_mt3", "wat_mtf", "sgath", "motive_delphi"):
+        assert f"#   {key}: " in header
+    assert {int(r["poles"]) for r in rows} == {2, 4, 6, 8}
+
+
 def test_catalogue_law_is_the_fit_of_its_table():
-    """The law's constants are the least-squares fit (log J against log T_r) of the table
-    in docs/drives.md, to the 4 digits given; its rms error is the documented 28 %."""
-    t = np.array([p * 1e3 / (n * RPM) for p, n, _ in CATALOGUE])
-    j = np.array([x for _, _, x in CATALOGUE])
+    """The law's constants are the least-squares fit (log J against log T_r) of the catalogue
+    rows, to the 4 digits given, over 2.47-2412 N*m."""
+    t, j = catalogue_torque_and_inertia()
+    assert t.min() == pytest.approx(2.47, abs=0.005) and t.max() == pytest.approx(2411.4, abs=0.05)
     slope, intercept = np.polyfit(np.log(t), np.log(j), 1)
     assert slope == pytest.approx(MOTOR_INERTIA_EXP, abs=5e-4)
     assert math.exp(intercept) == pytest.approx(MOTOR_INERTIA_COEFF, rel=1e-3)
-    law = np.array([motor_rotor_inertia(p * 1e3, n * RPM) for p, n, _ in CATALOGUE])
-    assert float(np.sqrt(np.mean(np.log(law / j) ** 2))) == pytest.approx(0.278, abs=0.001)
-    # case G's motor (docs/drives.md): 150 kW at 1000 rpm, 1432 N*m -> 4.88 kg*m^2
-    assert motor_rotor_inertia(150e3, 1000 * RPM) == pytest.approx(4.88, abs=0.005)
-    assert GUO_WANG["motor_inertia"] == motor_rotor_inertia(150e3, 1000 * RPM)
+    # case G's size of motor, 150 kW at 1000 rpm, 1432 N*m (docs/drives.md): 6.52 kg*m^2 (the
+    # law before session 12, fitted to 19 motors up to 143 N*m: 4.88)
+    assert motor_rotor_inertia(150e3, 1000 * RPM) == pytest.approx(6.52, abs=0.005)
+
+
+def test_catalogue_law_within_the_catalogues_own_spread():
+    """A law of the rated torque alone cannot beat the spread between catalogue motors of the
+    same rated torque (2, 4, 6 and 8 poles, different makers and frames): the rms of log J
+    between motors within 10 % of each other's torque, less the law's slope over their torque
+    difference, divided by sqrt(2), is 0.343 (233 pairs). The law's log rms is within 10 % of
+    it (measured 0.351). And it has no bias by size: in every torque band the median of
+    log(J_law / J_catalogue) is within 2.5 standard errors of that median (1.2533 sd / sqrt(n))
+    of zero, measured |z| <= 1.9 (500-950 N*m: the law 17 % below the 11 motors' median).
+    Session 10's law (2.247e-4 T^1.374, fitted up to 143 N*m) fails this below 25 N*m and
+    above 500 N*m (z = +3.6, -4.2, -4.6: 35 % low at 500-1500 N*m), which is why it was refitted."""
+    t, j = catalogue_torque_and_inertia()
+    lt, lj = np.log(t), np.log(j)
+    pairs = [(lj[a] - lj[b]) - MOTOR_INERTIA_EXP * (lt[a] - lt[b])
+             for a in range(len(t)) for b in range(a + 1, len(t)) if abs(lt[a] - lt[b]) < 0.1]
+    scatter = math.sqrt(np.mean(np.square(pairs)) / 2)
+    assert len(pairs) == 233 and scatter == pytest.approx(0.343, abs=0.001)
+    err = np.log(np.array([motor_rotor_inertia(x, 1.0) for x in t]) / j)
+    assert float(np.sqrt(np.mean(err**2))) < 1.1 * scatter
+
+    def band_z(e: np.ndarray, lo: float, hi: float) -> float:
+        b = e[(t >= lo) & (t < hi)]
+        return float(np.median(b) / (1.2533 * np.std(b, ddof=1) / math.sqrt(len(b))))
+
+    bands = [(2.4, 25.0), (25.0, 150.0), (150.0, 500.0), (500.0, 950.0), (950.0, 1500.0), (1500.0, 2500.0)]
+    z = [band_z(err, lo, hi) for lo, hi in bands]
+    assert all(abs(x) < 2.5 for x in z), z
+    old = np.log(2.247e-4 * t**1.374 / j)
+    assert sum(abs(band_z(old, lo, hi)) > 2.5 for lo, hi in bands) == 3
 
 
 # A check on data the law was not fitted to, reaching the conveyor range: the rotor inertias
@@ -68,9 +115,10 @@ PRESETS_400V_50HZ = [(5, 0.0131), (10, 0.0343), (20, 0.102), (50, 0.37), (100, 1
 
 def test_catalogue_law_against_the_matlab_presets():
     """The law against the 7 preset machines (3.7-149 kW, 24-950 N*m; docs/drives.md, "The
-    law against large motors"): no worse than on its own catalogue points (log rms 0.278):
-    measured 0.192 over all 7, 0.143 over the four of 37-149 kW (the conveyor range starts
-    there), each of those within 25 % (measured +11, -14, -19, -4 %)."""
+    law against large motors"): no worse than session 10's law on its own 19 catalogue
+    points (log rms 0.278): measured 0.157 over all 7, 0.146 over the four of 37-149 kW (the
+    conveyor range starts there), each of those within 25 % (measured +23, +2, +1, +22 %;
+    session 10's law: +11, -14, -19, -4 %)."""
     hp = 745.7  # W
     law = np.array([motor_rotor_inertia(k * hp, 1500 * RPM) for k, _ in PRESETS_400V_50HZ])
     j = np.array([x for _, x in PRESETS_400V_50HZ])
@@ -80,8 +128,8 @@ def test_catalogue_law_against_the_matlab_presets():
     assert big.sum() == 4
     assert float(np.sqrt(np.mean(err[big] ** 2))) < 0.278
     assert np.all(np.abs(law[big] / j[big] - 1) < 0.25), law / j - 1
-    # the 150 kW (200 hp) machine: 2.77 against 2.9 kg*m^2
-    assert law[-1] == pytest.approx(2.77, abs=0.005)
+    # the 150 kW (200 hp) machine: 3.55 against 2.9 kg*m^2 (session 10's law: 2.77)
+    assert law[-1] == pytest.approx(3.55, abs=0.005)
 
 
 def test_builder_default_is_a_pi_drive_with_the_laws_inertia():
@@ -142,7 +190,9 @@ def test_guo_wang_conveyor_drive():
     ratio = GUO_WANG["motor_speed"] / (GUO_WANG["speed"] / r)
     vfd = guo_wang_conveyor(length=60.0).pulleys[1].drive
     assert vfd.controller == SpeedController()
-    assert vfd.inertia == pytest.approx(motor_rotor_inertia(150e3, 1000 * RPM) * ratio**2, rel=1e-12)
+    # case G keeps session 10's law, with which its figures were measured (scenes.GUO_WANG)
+    assert GUO_WANG["motor_inertia"] == pytest.approx(4.876, abs=5e-4)
+    assert vfd.inertia == pytest.approx(GUO_WANG["motor_inertia"] * ratio**2, rel=1e-12)
     ideal = guo_wang_conveyor(length=60.0, control="ideal").pulleys[1].drive
     assert ideal.controller is None and ideal.inertia == vfd.inertia
 

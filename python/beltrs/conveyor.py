@@ -197,20 +197,22 @@ def check_control(where: str, control: object) -> str:
     return control
 
 #: The catalogue law of :func:`motor_rotor_inertia`: J = MOTOR_INERTIA_COEFF · T_r^MOTOR_INERTIA_EXP
-#: (kg·m², T_r the rated torque in N·m), a least-squares fit in log-log of 19 IEC
-#: low-voltage cage motors, 0.75-22 kW, 2 and 4 poles (docs/drives.md, "Motor inertia").
-MOTOR_INERTIA_COEFF = 2.247e-4
-MOTOR_INERTIA_EXP = 1.374
+#: (kg·m², T_r the rated torque in N·m), a least-squares fit in log-log of 133 IEC low-voltage
+#: cage motors, 2-8 poles, 0.75-315 kW, 2.5-2412 N·m (tests/data/motor_inertia_catalogue.csv;
+#: docs/drives.md, "Motor inertia").
+MOTOR_INERTIA_COEFF = 1.405e-4
+MOTOR_INERTIA_EXP = 1.4785
 
 
 def motor_rotor_inertia(rated_power: float, rated_speed: float) -> float:
     """Rotor inertia of an IEC low-voltage cage induction motor, kg·m², from its rated power
-    (W) and rated speed (rad/s): J = 2.247e-4 · T_r^1.374 with T_r = rated_power /
-    rated_speed in N·m, fitted to catalogue data (docs/drives.md, "Motor inertia": 19
-    motors, 0.75-22 kW, 2.5-143 N·m, rms error 28 % in J; checked against MATLAB's preset
-    4-pole 400 V 50 Hz machines up to 149 kW, 950 N·m: within -19 %...+33 %, docs/drives.md,
-    "The law against large motors"; beyond that an extrapolation, a 150 kW 1000 rpm
-    motor's 1432 N·m gives 4.9 kg·m²)."""
+    (W) and rated speed (rad/s): J = 1.405e-4 · T_r^1.4785 with T_r = rated_power /
+    rated_speed in N·m, fitted to makers' catalogue data (docs/drives.md, "Motor inertia":
+    133 motors of 2-8 poles, 0.75-315 kW, 2.5-2412 N·m, tests/data/motor_inertia_catalogue.csv;
+    log rms error 0.35, the spread of the catalogues themselves between motors of the same
+    rated torque; a 150 kW motor: 3.6 kg·m² at 1500 rpm, 6.5 at 1000 rpm). Outside 2.5-2412
+    N·m the power law is extrapolated, without a warning: give the data sheet's inertia for
+    larger motors when you have it."""
     p = check("rated_power", rated_power, positive=True, unit="W")
     n = check("rated_speed", rated_speed, positive=True, unit="rad/s")
     return MOTOR_INERTIA_COEFF * (p / n) ** MOTOR_INERTIA_EXP
@@ -238,7 +240,7 @@ class DriveSpec:
             at the motor's rated speed ``motor_speed`` (counted at the drum as inertia ×
             ratio², ratio = motor_speed / drum speed, the gearbox). Default None: the
             catalogue law :func:`motor_rotor_inertia` of the rated torque power /
-            ``motor_speed`` (a 150 kW motor: 2.8 kg·m² at 1500 rpm, 4.9 at 1000 rpm); 0
+            ``motor_speed`` (a 150 kW motor: 3.6 kg·m² at 1500 rpm, 6.5 at 1000 rpm); 0
             for a drive with a ``motor`` (its own ``rotor_inertia`` counts) and for none.
         motor_speed: rated motor speed, rad/s. Default 1500 rpm.
         control: ``"vfd"`` (default): a variable-speed drive, a PI speed controller with the
