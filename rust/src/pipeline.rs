@@ -79,6 +79,10 @@ pub struct Scratch {
     pub brake_torque: Vec<f64>,
     /// Bearing drag torque on each pulley, N·m (−b·ω).
     pub bearing_torque: Vec<f64>,
+    /// Moment of the rigid belt's normal contact forces on each pulley about its centre,
+    /// N·m (`contact::pulley_body_contact`; 0 for the node belt, whose contact forces are
+    /// radial).
+    pub contact_torque: Vec<f64>,
     /// Speed (rad/s) each pulley is held to at the end of this step by its brake (0) or
     /// speed-controlled drive (the curve), when the holder can hold it; the integrator then
     /// sets it exactly. `None`: the pulley moves under its net torque.
@@ -123,13 +127,14 @@ pub struct Scratch {
 
 impl Scratch {
     /// Net torque on pulley `j` from the last force evaluation (belt friction, drive,
-    /// brake and bearing drag), N·m.
+    /// brake, bearing drag and the rigid belt's normal contact), N·m.
     #[inline]
     pub fn pulley_torque(&self, j: usize) -> f64 {
         self.friction[j].torque
             + self.drive_torque[j]
             + self.brake_torque[j]
             + self.bearing_torque[j]
+            + self.contact_torque[j]
     }
 
     /// Net force along its line on takeup `t` of pulley `j` (counterweight pull plus the
@@ -153,6 +158,7 @@ impl Scratch {
             drive_torque: vec![0.0; p],
             brake_torque: vec![0.0; p],
             bearing_torque: vec![0.0; p],
+            contact_torque: vec![0.0; p],
             held: vec![None; p],
             idler_contacts: vec![IdlerContact::default(); q],
             wrap_mark: Vec::new(),
@@ -176,6 +182,7 @@ impl Scratch {
         self.drive_torque.iter_mut().for_each(|t| *t = 0.0);
         self.brake_torque.iter_mut().for_each(|t| *t = 0.0);
         self.bearing_torque.iter_mut().for_each(|t| *t = 0.0);
+        self.contact_torque.iter_mut().for_each(|t| *t = 0.0);
         self.held.iter_mut().for_each(|h| *h = None);
         self.friction
             .iter_mut()

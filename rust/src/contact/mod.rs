@@ -229,7 +229,13 @@ pub struct Bodies<'a> {
 /// each end taking ½·`law`(depth, approach) along the body's normal; the force and its
 /// moment go to `force` and `torque`, and each body in contact is recorded in `out` with
 /// its ends' summed normal force and that normal, for the friction solve.
-/// Returns the resultant force on the pulley.
+/// Returns the resultant force on the pulley and its moment about the pulley's centre, N
+/// and N·m: the contact's forces act on the pulley at the body's ends, where they act on
+/// the body, so that the contact keeps the angular momentum of belt and pulley. (The
+/// ends' forces lie along the body's normal, not the pulley's radial: where a body's ends
+/// press unequally, at the strand's boundary or landing, they have a moment about the
+/// centre of (l/2)·(N_a − N_b) — about 300 N·m at v/l on case G's drums — that
+/// the pulley takes back; docs/kubas.md, "The contact's moment on the drum".)
 pub fn pulley_body_contact(
     window: &ContactWindow,
     bodies: &Bodies<'_>,
@@ -238,7 +244,7 @@ pub fn pulley_body_contact(
     torque: &mut [f64],
     out: &mut PulleyContacts,
     law: impl Fn(f64, f64) -> f64,
-) -> V2 {
+) -> (V2, f64) {
     use crate::belt::rigid::contact::{body_contact_with, BodyOnPulley, Chord};
     let Bodies {
         position: x,
@@ -250,6 +256,7 @@ pub fn pulley_body_contact(
     out.clear();
     let n = x.len();
     let mut on_pulley = V2::zeros();
+    let mut moment = 0.0;
     // The chord's geometry of the last body's length (the bodies of a belt share one).
     let mut chord = Chord::new(0.0, body.radius);
     for k in 0..window.len {
@@ -278,20 +285,21 @@ pub fn pulley_body_contact(
         force[i] += c.force;
         torque[i] += c.torque;
         on_pulley -= c.force;
+        let rel = x[i] - body.center;
+        moment -= rel.x * c.force.y - rel.y * c.force.x + c.torque;
         out.node.push(i);
         // The speed along the friction's direction that the mass centre has when it turns
         // with the pulley, per unit ω: (ẑ × (x − c))·t, t = the body's axis. ρ for a body
         // resting on the drum; more for one landing or leaving (its mass centre off ρ,
         // its axis off the tangent), which would otherwise slide at the difference
         // (measured on case G's drums: 6 kN of drag).
-        let rel = x[i] - body.center;
         let t = V2::new(-c.normal.y, c.normal.x);
         out.lever.push(V2::new(-rel.y, rel.x).dot(&t));
         out.normal.push(c.normal);
         out.normal_force.push(c.normal_force);
         out.penetration.push(c.penetration);
     }
-    on_pulley
+    (on_pulley, moment)
 }
 
 /// Wrap contact with one pulley (the default pulley contact, see [`wrap`]): every element
@@ -591,4 +599,83 @@ pub fn segment_penalty(
     let approach = -vc.dot(&normal);
     let fn_ = (body.stiffness * depth + body.damping * approach).max(0.0);
     (normal, fn_, depth)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pulley_takes_back_the_rigid_contacts_moment() {
+        // Case G's drum (R = 0.4 m) with 0.2 m bodies: a wrap of bodies resting as chords,
+        // the first pressed in at one end only (landing), the others at both ends but by
+        // different depths. The contact's forces lie along each body's normal, so its
+        // moment about the drum's centre is not zero; the pulley gets the opposite force
+        // and the opposite moment, so belt and pulley keep their momentum and angular
+        // momentum (`pulley_body_contact`).
+        let (l, r) = (0.2, 0.4);
+        let a = l / r;
+        let rho = crate::belt::rigid::contact::contact_radius(l, r);
+        let center = V2::new(0.3, -0.1);
+        let n = 6;
+        let mut x = Vec::new();
+        let mut angle = Vec::new();
+        for i in 0..n {
+            let phi = 0.3 + a * i as f64;
+            let depth = 1e-5 * (1.0 + 0.7 * i as f64);
+            x.push(center + V2::new(phi.cos(), phi.sin()) * (rho - depth));
+            // Tilted by up to 3 mrad: unequal ends; the first body lands on one end.
+            let tilt = if i == 0 {
+                0.02
+            } else {
+                3e-3 * (i as f64 - 2.5)
+            };
+            angle.push(phi + std::f64::consts::FRAC_PI_2 + tilt);
+        }
+        let v: Vec<V2> = (0..n).map(|i| V2::new(0.1 * i as f64, -0.2)).collect();
+        let (spin, length) = (vec![0.3; n], vec![l; n]);
+        let bodies = Bodies {
+            position: &x,
+            velocity: &v,
+            angle: &angle,
+            spin: &spin,
+            length: &length,
+        };
+        let pulley = PulleyBody {
+            center,
+            center_velocity: V2::zeros(),
+            radius: r,
+            stiffness: 1e8,
+            damping: 1e3,
+            margin: 0.1,
+        };
+        let (mut force, mut torque) = (vec![V2::zeros(); n], vec![0.0; n]);
+        let mut out = PulleyContacts::default();
+        let window = ContactWindow { first: 0, len: n };
+        let law = |d: f64, rate: f64| 1e8 * d + 1e3 * rate;
+        let (on_pulley, moment) = pulley_body_contact(
+            &window,
+            &bodies,
+            &pulley,
+            &mut force,
+            &mut torque,
+            &mut out,
+            law,
+        );
+        assert_eq!(out.len(), n);
+        let total: V2 = force.iter().sum();
+        let belt_moment: f64 = (0..n)
+            .map(|i| {
+                let rel = x[i] - center;
+                rel.x * force[i].y - rel.y * force[i].x + torque[i]
+            })
+            .sum();
+        assert!((total + on_pulley).norm() < 1e-9 * total.norm());
+        // The moment is there (tens of N·m here) and the pulley takes it back.
+        assert!(belt_moment.abs() > 1.0, "{belt_moment}");
+        assert!(
+            (belt_moment + moment).abs() < 1e-9 * belt_moment.abs().max(1.0),
+            "{belt_moment} {moment}"
+        );
+    }
 }

@@ -55,7 +55,7 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                 spin: &s.body_spin,
                 length: &m.rest_length,
             };
-            let on = super::pulley_body_contact(
+            let (on, moment) = super::pulley_body_contact(
                 window,
                 &bodies,
                 &body,
@@ -74,6 +74,20 @@ pub fn pulley_contact(cx: &mut StageContext<'_>) {
                     let t = contacts.normal[k];
                     contacts.lever[k] += slide.dot(&nalgebra::Vector2::new(-t.y, t.x));
                 }
+            }
+            // The pulley takes the contact's moment back through its surface, where the
+            // stick-force friction can carry it (docs/kubas.md, "The contact's moment on
+            // the drum"). A frictionless pulley takes radial loads only: there the moment
+            // stays the belt's, as the ends' law has it. Under creep friction it is not
+            // given to the pulley either: measured, it moved the RKF45/central-difference
+            // agreement of tests/creep_friction.rs at 0.02 of the stable step from
+            // 1.6e-5 to 5.9e-5 (not traced). Nor in the static relaxation: with it case G's
+            // 150 m relaxation did not converge (residual 2.9e-4 after 400 000 steps,
+            // against 11 904 steps to 1e-5 without; not traced).
+            if !effects.quasi_static_friction
+                && matches!(p.friction, crate::scene::FrictionModel::StickForce { .. })
+            {
+                sc.contact_torque[j] = moment;
             }
             on
         } else {

@@ -44,7 +44,10 @@ pub(super) fn hold_pulleys(
             // Torque that gives the prescribed speed this step, within the holder's range
             // (a brake or a holdback never reverses the motion).
             None => {
-                let other = sc.drive_torque[j] + sc.friction[j].torque + sc.bearing_torque[j];
+                let other = sc.drive_torque[j]
+                    + sc.friction[j].torque
+                    + sc.bearing_torque[j]
+                    + sc.contact_torque[j];
                 hold.limit(p.inertia * hold.alpha(omega, dt) - other)
             }
         };

@@ -62,6 +62,7 @@ impl Simulation {
 pub fn holding_torque(m: &Model, s: &State, sc: &Scratch, j: usize) -> f64 {
     let p = &m.pulleys[j];
     let load = sc.bearing_torque[j]
+        + sc.contact_torque[j]
         + p.drive
             .as_ref()
             .map_or(0.0, |d| d.torque_at(s.time, s.pulley_omega[j]));

@@ -84,7 +84,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             inertia: p.inertia,
             omega: s.pulley_omega[j],
             center_velocity: s.pulley_center_velocity(m, j),
-            applied_torque: sc.drive_torque[j] + sc.bearing_torque[j],
+            applied_torque: sc.drive_torque[j] + sc.bearing_torque[j] + sc.contact_torque[j],
             mu_static: static_coefficient,
             mu_kinetic: kinetic_coefficient,
             prescribed,
