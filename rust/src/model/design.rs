@@ -777,9 +777,19 @@ fn rigid_placement(
         if speed == 0.0 || dist <= 0.0 || (dist - radius).abs() > 0.05 * radius {
             return None;
         }
-        let k = (0..n)
-            .min_by(|&i, &j| ((centres[i] - c).norm()).total_cmp(&(centres[j] - c).norm()))?;
-        Some(body_spin[k])
+        // the median spin of the bodies on it (those next to where the strands land turn
+        // at their own rates), else the nearest body's
+        let mut on: Vec<f64> = (0..n)
+            .filter(|&i| (centres[i] - c).norm() < radius)
+            .map(|i| body_spin[i])
+            .collect();
+        if on.is_empty() {
+            let k = (0..n)
+                .min_by(|&i, &j| ((centres[i] - c).norm()).total_cmp(&(centres[j] - c).norm()))?;
+            return Some(body_spin[k]);
+        }
+        on.sort_by(f64::total_cmp);
+        Some(on[on.len() / 2])
     };
     let pulley_omega = scene
         .pulleys
