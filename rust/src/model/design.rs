@@ -438,8 +438,9 @@ pub(super) fn place(
     // bodies' chords (half each): the chord's strain is scaled by the mean of 1/cos(α/2)
     // at its two ends (from the previous pass).
     let mut factor = vec![1.0; n];
-    // The rigid belt's strands run straight onto a joint on each drum's vertex circle
-    // (`design_rigid::Landing`), found from the previous pass.
+    // With the wrap joints the rigid belt's strands run straight onto a joint on each
+    // drum's vertex circle (`design_rigid::Landing`), found from the previous pass (plain
+    // joints: none, the vertex curve as before).
     let landings = std::cell::RefCell::new(Vec::<super::design_rigid::Landing>::new());
     // The sag of the spans on rolls (`super::sag`), updated between passes.
     let sag = std::cell::RefCell::new(super::sag::SagShape::default());

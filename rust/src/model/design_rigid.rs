@@ -74,9 +74,11 @@ pub(crate) fn onto_vertex_circles(p: V2, wraps: &[(V2, f64)]) -> V2 {
     p
 }
 
-/// Where a strand of the rigid belt runs onto a drum (or off it): straight from its pivot
-/// (the nearest roll, or the strand's middle) to a joint on the drum's vertex circle, so
-/// that the chain bends at that joint only, as a chain onto a sprocket. The vertex curve
+/// Where a strand of the rigid belt with wrap joints (`belt::rigid::wrap_joint`) runs onto
+/// a drum (or off it): straight from its pivot (the nearest roll, or the strand's middle)
+/// to a joint on the drum's vertex circle, so that the chain bends at that joint only, as a
+/// chain onto a sprocket (plain joints keep the vertex curve: docs/design-start.md, "Where
+/// the strands meet the drums", why). The vertex curve
 /// (`onto_vertex_circles` of the path) bends where the strand's line meets the circle,
 /// wherever the joints fall: the body spanning that point bent at both its joints (out of
 /// balance by up to 6 kN on case G's 0.4 m drums at 50 kN, and with the wrap joints two
