@@ -438,6 +438,10 @@ pub(super) fn place(
     // bodies' chords (half each): the chord's strain is scaled by the mean of 1/cos(α/2)
     // at its two ends (from the previous pass).
     let mut factor = vec![1.0; n];
+    // With the wrap joints the rigid belt's strands run straight onto a joint on each
+    // drum's vertex circle (`design_rigid::Landing`), found from the previous pass (plain
+    // joints: none, the vertex curve as before).
+    let landings = std::cell::RefCell::new(Vec::<super::design_rigid::Landing>::new());
     // The sag of the spans on rolls (`super::sag`), updated between passes.
     let sag = std::cell::RefCell::new(super::sag::SagShape::default());
     let point = |s: f64| sag.borrow().point(path, s);
@@ -449,7 +453,8 @@ pub(super) fn place(
                 mut out: Option<&mut Vec<f64>>|
      -> BeltResult<f64> {
         let on = circles(l0);
-        let point = |s: f64| super::design_rigid::onto_vertex_circles(point(s), &on);
+        let kinks = landings.borrow();
+        let point = |s: f64| super::design_rigid::landed(point, s, &kinks, length, &on);
         let mut s = 0.0;
         for (e, f) in extra.iter().zip(factor) {
             if let Some(o) = out.as_deref_mut() {
@@ -566,10 +571,12 @@ pub(super) fn place(
         at.clear();
         walk(l0, &extra, &factor, Some(&mut at))?;
         let on = circles(l0);
-        let nominal: Vec<V2> = at
-            .iter()
-            .map(|&s| super::design_rigid::onto_vertex_circles(point(s), &on))
-            .collect();
+        let nominal: Vec<V2> = {
+            let kinks = landings.borrow();
+            at.iter()
+                .map(|&s| super::design_rigid::landed(point, s, &kinks, length, &on))
+                .collect()
+        };
         positions = if sink_wraps.is_empty() {
             nominal
         } else {
@@ -584,6 +591,48 @@ pub(super) fn place(
             break;
         }
         previous.clone_from(&at);
+        if wrap_joints {
+            // Each strand's ends on the drums (tangent point, pivot, drum centre, radius):
+            // its line from the pivot is turned onto a joint there (`design_rigid::landed`).
+            let ends: Vec<(f64, f64, V2, f64)> = runs
+                .iter()
+                .flat_map(|&(from, to, pulley)| {
+                    let p = &scene.pulleys[pulley];
+                    let c = V2::new(p.center[0], p.center[1]);
+                    [(from, -1.0), (to, 1.0)].map(|(s, out)| {
+                        // the strand's pivot: the nearest roll on it, else half the strand
+                        let free = if out > 0.0 {
+                            wrap_ahead(s, length).map_or(0.5 * length, |f| 0.5 * (f - s))
+                        } else {
+                            let behind = runs
+                                .iter()
+                                .flat_map(|r| [r.1 - length, r.1, r.1 + length])
+                                .filter(|&t| t < s - 1e-9)
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            0.5 * (s - behind).min(length)
+                        };
+                        let roll = scene
+                            .idlers
+                            .iter()
+                            .filter(|d| d.contact_stiffness > 0.0)
+                            .map(|d| {
+                                let (t, _) = crate::loads::project_on_path(
+                                    path,
+                                    V2::new(d.center[0], d.center[1]),
+                                );
+                                (out * (t - s)).rem_euclid(length)
+                            })
+                            .filter(|&g| g > 4.0 * l0 && g < free)
+                            .fold(free, f64::min);
+                        // clear of the bodies resting on the roll
+                        let roll = if roll < free { roll - 2.0 * l0 } else { roll };
+                        (s, s + out * roll, c, p.radius)
+                    })
+                })
+                .collect();
+            *landings.borrow_mut() =
+                super::design_rigid::landings(&at, &positions, l0, &ends, length);
+        }
         if rigid {
             let cosines = super::design_rigid::half_turn_cosines(&positions);
             for e in 0..n {
@@ -729,9 +778,19 @@ fn rigid_placement(
         if speed == 0.0 || dist <= 0.0 || (dist - radius).abs() > 0.05 * radius {
             return None;
         }
-        let k = (0..n)
-            .min_by(|&i, &j| ((centres[i] - c).norm()).total_cmp(&(centres[j] - c).norm()))?;
-        Some(body_spin[k])
+        // the median spin of the bodies on it (those next to where the strands land turn
+        // at their own rates), else the nearest body's
+        let mut on: Vec<f64> = (0..n)
+            .filter(|&i| (centres[i] - c).norm() < radius)
+            .map(|i| body_spin[i])
+            .collect();
+        if on.is_empty() {
+            let k = (0..n)
+                .min_by(|&i, &j| ((centres[i] - c).norm()).total_cmp(&(centres[j] - c).norm()))?;
+            return Some(body_spin[k]);
+        }
+        on.sort_by(f64::total_cmp);
+        Some(on[on.len() / 2])
     };
     let pulley_omega = scene
         .pulleys
