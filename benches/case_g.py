@@ -82,7 +82,8 @@ def probe_chunks(sim: beltrs.Simulation, probes: list[tuple[float, float]], dura
 
 def start(shape: str, ramp: float, prestart: float, length: float, settle: float,
           progress: Callable[[dict[str, Any]], None] | None = None, contact: str = "nodes",
-          control: str = "ideal", **scene_kw: Any) -> dict[str, Any]:
+          control: str = "ideal", loss: tuple[float, float] | None = None,
+          creep_ramp: float | None = None, **scene_kw: Any) -> dict[str, Any]:
     """One start from rest: build, stabilise, run the curve and ``settle`` s more.
     ``progress`` gets the run's figures so far (as returned, with ``duration`` the planned
     time) after each half second (`probe_chunks`); ``contact``: "nodes" pins nodal pulley
@@ -91,9 +92,15 @@ def start(shape: str, ramp: float, prestart: float, length: float, settle: float
     belt); ``control``: the drive, "ideal" (the ideal speed follower: the tables of
     docs/case-g.md, which predate the builder's VFD default of session 10) or "vfd"
     (:func:`guo_wang_conveyor`'s default since then, docs/drives.md); ``scene_kw`` go to
-    :func:`guo_wang_conveyor`."""
-    curve = beltrs.StartCurve(shape=shape, speed=GUO_WANG["speed"], ramp=ramp, prestart=prestart)
+    :func:`guo_wang_conveyor`; ``loss``: (``belt.loss_factor``, ``belt.loss_frequency`` in Hz)
+    to set on the builder's belt (a viscoelastic Zener belt, docs/wrap-contact.md; None keeps
+    the builder's); ``creep_ramp``: s, the pre-start's run-up to the creep speed
+    (``StartCurve.creep_ramp``; None keeps its default, half the pre-start)."""
+    curve = beltrs.StartCurve(shape=shape, speed=GUO_WANG["speed"], ramp=ramp, prestart=prestart,
+                              creep_ramp=creep_ramp if prestart > 0 else None)
     scene = guo_wang_conveyor(curve, length=length, control=control, **scene_kw)
+    if loss is not None:
+        scene = replace(scene, belt=replace(scene.belt, loss_factor=loss[0], loss_frequency=loss[1]))
     if contact == "nodes":
         scene = replace(scene, belt=replace(scene.belt, pulley_contact="nodes"))
     elif contact != "builder":
@@ -117,7 +124,9 @@ def start(shape: str, ramp: float, prestart: float, length: float, settle: float
         run.update(nodes=sim.nodes, dt=sim.dt, stabilise_steps=rep["steps"], stabilise_wall=t1 - t0,
                    run_wall=time.perf_counter() - t1, duration=duration,
                    pulley_contact=scene.belt.pulley_contact, idler_contact=scene.belt.idler_contact,
-                   element_length=scene_kw.get("element_length", 0.2), control=control)
+                   element_length=scene_kw.get("element_length", 0.2), control=control,
+                   loss_factor=scene.belt.loss_factor, loss_frequency=scene.belt.loss_frequency,
+                   creep_ramp=curve.creep_ramp)
         return run
 
     each = None if progress is None else (lambda data: progress(figures(data)))
@@ -238,6 +247,14 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--control", choices=("ideal", "vfd"), default="ideal",
                     help="with --formulations: the drive, 'ideal' (the ideal speed follower, as every table of the "
                     "page) or 'vfd' (guo_wang_conveyor's default since session 10: PI speed loop and motor rotor)")
+    ap.add_argument("--loss-factor", type=float,
+                    help="with --formulations: belt.loss_factor (peak tan delta of a viscoelastic Zener belt, "
+                    "docs/wrap-contact.md) set on the builder's belt; default: the builder's")
+    ap.add_argument("--loss-frequency", type=float, default=0.5,
+                    help="with --loss-factor: belt.loss_frequency, Hz, where tan delta peaks (default 0.5: "
+                    "case G's slow loop modes, 0.2-0.5 Hz, sit inside its band f/3.7..3.7 f)")
+    ap.add_argument("--creep-ramp", type=float,
+                    help="with --formulations and a pre-start: StartCurve.creep_ramp, s (default: half the pre-start)")
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
     length = 200.0 if args.quick else GUO_WANG["length"]
@@ -252,7 +269,9 @@ def main(argv: list[str] | None = None) -> None:
             runs = formulation_study(args.formulations.split(","), args.curves.split(","),
                                      [float(x) for x in args.ramps.split(",")], length, args.settle, out,
                                      tuple(float(x) for x in args.prestarts.split(",")), args.pulley_contact,
-                                     args.element_length, args.control)
+                                     args.element_length, args.control,
+                                     None if args.loss_factor is None else (args.loss_factor, args.loss_frequency),
+                                     args.creep_ramp)
             wall = time.perf_counter() - t0
         section = formulations_section(runs, length, wall, args.load or "load not given")
         write_section(out / "case-g.md", section)
@@ -405,7 +424,8 @@ FORMULATION_NAMES = {"node_kelvin_voigt": "node", "rigid_body": "rigid body"}
 def formulation_study(formulations: list[str], curves: list[str], ramps: list[float], length: float,
                       settle: float, out: pathlib.Path, prestarts: tuple[float, ...] = (0.0,),
                       contact: str = "nodes", element_length: float = 0.2,
-                      control: str = "ideal") -> list[dict[str, Any]]:
+                      control: str = "ideal", loss: tuple[float, float] | None = None,
+                      creep_ramp: float | None = None) -> list[dict[str, Any]]:
     """Each pre-start, ramp and curve with each formulation, in that order; prints each run
     (and its progress) and saves the series to ``out/case_g_formulations.npz`` and the figures
     to ``out/case_g_formulations.json`` as it goes, the run under way included. ``contact``:
@@ -435,7 +455,8 @@ def formulation_study(formulations: list[str], curves: list[str], ramps: list[fl
                         dump(runs + [run])
 
                     run = start(shape, ramp, pre, length, settle, progress=partial, contact=contact,
-                                formulation=form, element_length=element_length, control=control)
+                                formulation=form, element_length=element_length, control=control,
+                                loss=loss, creep_ramp=creep_ramp)
                     label(run, form, True)
                     runs.append(run)
                     report(run, f"{FORMULATION_NAMES.get(form, form)} {shape}")
@@ -506,11 +527,18 @@ def formulations_section(runs: list[dict[str, Any]], length: float, wall: float,
 
 def contact_label(run: dict[str, Any]) -> str:
     """The belt column's note of a run whose contact is not nodal on the drums and segment on
-    the rolls (runs without the fields are), or whose elements are not 0.2 m."""
+    the rolls (runs without the fields are), or whose elements are not 0.2 m, or whose belt is
+    viscoelastic (``loss_factor`` > 0: "tan δ 0.1 at 0.5 Hz"), or whose pre-start's creep
+    ramp is not the default half of it."""
     drums, rolls = run.get("pulley_contact", "nodes"), run.get("idler_contact", "segment")
     notes = [] if drums == "nodes" and rolls == "segment" else [f"drums {drums}, rolls {rolls}"]
     if abs(run.get("element_length", 0.2) - 0.2) > 1e-12:
         notes.append(f"{run['element_length']:g} m elements")
+    if run.get("loss_factor"):
+        notes.append(f"tan δ {run['loss_factor']:g} at {run['loss_frequency']:g} Hz")
+    creep = run.get("creep_ramp")
+    if creep is not None and run.get("prestart", 0.0) > 0 and abs(creep - run["prestart"] / 2) > 1e-12:
+        notes.append(f"creep ramp {creep:g} s")
     return f" ({'; '.join(notes)})" if notes else ""
 
 

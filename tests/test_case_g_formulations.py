@@ -215,6 +215,16 @@ def test_bench_section_names_each_runs_contact():
     text = bench.formulations_section([run, wrap, rigid], 972.0, 60.0, "test")
     assert "unless the belt column" in text
     assert "| node (drums wrap, rolls wrap) |" in text
+    run = bench.start("harrison", 0.5, 0.5, LENGTH, 0.0, contact="builder", control="vfd",
+                      loss=(0.1, 0.5), creep_ramp=0.5, element_length=0.196)
+    assert (run["loss_factor"], run["loss_frequency"], run["creep_ramp"]) == (0.1, 0.5, 0.5)
     assert "| rigid body (0.1 m elements) |" in text
+    # --loss-factor and --creep-ramp (session 12): a viscoelastic belt and a pre-start with a
+    # creep ramp other than its default half are named too; the default creep ramp is not.
+    zener = dict(wrap, loss_factor=0.1, loss_frequency=0.5, prestart=3.0, creep_ramp=3.0)
+    plain = dict(wrap, loss_factor=0.0, loss_frequency=5.0, prestart=3.0, creep_ramp=1.5)
+    text = bench.formulations_section([zener, plain], 972.0, 60.0, "test")
+    assert "| node (drums wrap, rolls wrap; tan δ 0.1 at 0.5 Hz; creep ramp 3 s) |" in text
+    assert "| node (drums wrap, rolls wrap) |" in text
     with pytest.raises(ValueError, match="contact must be"):
         bench.start("harrison", 1.0, 0.0, LENGTH, 0.0, contact="wrap")
