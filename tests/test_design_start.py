@@ -480,26 +480,81 @@ def test_rigid_body_design_start_of_case_g_stays_within_1_percent_over_the_first
 
     Merged with the drums taking back the rigid contact's moment (session 12, docs/kubas.md,
     "The contact's moment on the drum"), the lead measured 1.014 % (each branch alone: this
-    one 0.71 %, the moment's with main's placement 1.065 %): hence the strict xfail."""
+    one 0.71 %, the moment's with main's placement 1.065 %): hence the strict xfail.
+
+    What the 1 % is on main a7cf348 (session 12, rigidrun; probes every 5 ms): not a
+    ringing but the VFD giving way. Its PI is primed (drives/prime.rs) with the head drum's
+    holding torque from the t = 0 forces, 440.7 N*m, including the rigid contact's moment
+    at t = 0; once the transition bodies have settled (within 0.1 s) the drum needs about
+    115 N*m (the ideal follower's mean, 88-127 per 0.1 s). The PI's integral takes the
+    difference as an angle: the head drum turns 0.34 mrad in the first 0.2 s, 0.17 mm of
+    belt go from the carry to the return, and the rolls hold the carry's deficit: the carry
+    probe sits at -0.85 % from 0.4 s on (return +0.03 %). With ``control="ideal"`` the same
+    start reads 0.26 % (0.75 / 0.56 / 0.26 / 0.35 / 0.82 % for 0.19 / 0.195 / 0.196 / 0.198
+    / 0.2 m bodies; the VFD 1.01 / 1.93 / 1.02 / 2.04 / 1.03 %). Priming from the strands'
+    joint tensions at the drum instead (tried, not kept) read 0.43 % at 0.196 m but 1.32 /
+    1.91 / 1.94 / 0.74 % at the other lengths: the settle's torque depends on the phase, so
+    the placement has to balance the transition bodies (the bend couple) for the prime to
+    be right."""
     runs = rigid_and_node_rest_runs()
     din = runs["node_kelvin_voigt"][0]
     off = np.abs(runs["rigid_body"] / din - 1).max()
     assert off < 0.01, off
 
 
-@pytest.mark.xfail(strict=True, reason="open: the rigid belt's running design start of case G at 60 m leaves "
-                   "DIN by 10.6 % over 2 s with the wrap joints (plain joints 15.3 %, main 8.3 / 13.9 %); the "
-                   "node belt 0.75 %")
+def test_rigid_body_running_design_start_of_case_g_holds_the_static_tensions():
+    """Issue 12, "at steady running, the dynamic drive tensions agree with the static
+    calculation within 3 %", for the rigid belt (builder defaults: wrap joints, 0.196 m
+    bodies): case G at 60 m started at 2 m/s from DIN 22101's running tensions, T1 and T2
+    10 m either side of the head drum, every 5 ms over 2 s, against ``guo_wang_statics``
+    at the same places (as ``test_running_start_of_case_g_is_steady`` for the node belt).
+
+    Measured (session 12, main a7cf348 + this test): at t = 0 +0.011 % / -0.005 % (the
+    placement); mean of the second second +0.43 % / +0.05 % (node belt +0.40 % / +0.03 %);
+    the means of the eight 0.25 s windows at most 0.73 % off (node belt 0.53 %): no drift.
+    The probes' instantaneous readings carry the rigid chain's running ripple at multiples
+    of v/l (2 m/s over 0.196 m bodies = 10.2 Hz; lines at 20.4, 30.6, 40.8 and 61.2 Hz of
+    0.25-0.5 kN), 1.5 % rms (node belt 0.2 %), 6.4 % at worst: the next test's strict xfail.
+
+    Tolerances: 0.1 % at t = 0 (the rigid placement's joint error on the strands, see the
+    rest start above); 3 % on the second second's mean, the issue's target; 1 % on each
+    0.25 s window's mean, the issue's 1 % for a design start (each window spans 2.5 periods
+    of v/l and 5-15 of the higher lines; with plain joints, whose v/l ripple is 12 % rms,
+    the windows' means reach 2.7 %, so this can fail)."""
+    scene = beltrs.scenes.guo_wang_conveyor(length=60.0, start="running", formulation="rigid_body")
+    din = beltrs.scenes.guo_wang_statics(length=60.0)
+    # DIN at the probes: 10 m before the head on the carry (loop distance 60 - 0.8 - 10),
+    # 10 m after it on the return
+    d = np.array([din.along(60.0 - 0.8 - 10.0), din.along(60.0 - 0.8 + 10.0)])
+    sim = beltrs.Simulation(scene)
+    data = beltrs.analysis.probe_run(sim, [(50.0, 0.4), (50.0, -0.4)], 2.0, 0.005)
+    t, r = data["time"], data["tension"]
+    np.testing.assert_allclose(r[0], d, rtol=1e-3)
+    np.testing.assert_allclose(r[t >= 1.0].mean(axis=0), d, rtol=0.03)
+    for a in np.arange(0.0, 2.0, 0.25):
+        window = (t >= a) & (t < a + 0.25)
+        np.testing.assert_allclose(r[window].mean(axis=0), d, rtol=0.01, err_msg=f"window from {a} s")
+
+
+@pytest.mark.xfail(strict=True, reason="open: the rigid belt's running ripple at multiples of v/l: the probes' "
+                   "0.1 s samples leave their t = 0 readings by 3.70 % (wrap joints; node belt 0.75 %); the means "
+                   "hold DIN to 0.73 % (test above)")
 def test_rigid_body_running_design_start_of_case_g_stays_within_3_percent():
     """``start="running"`` counterpart of the rest start above: case G at 60 m running at
     2 m/s from DIN 22101's running tensions, probes 10 m either side of the head drum every
-    0.1 s over 2 s, against their readings at t = 0 (51 112 / 49 713 N; the node belt's
-    51 114 / 49 713 N). The node belt holds 0.75 % (last second's mean +0.38 / +0.01 %).
-    Measured (session 12) for the rigid belt: wrap joints 10.6 % at most, last second's
-    mean -8.2 / -5.9 %; plain joints 15.3 %, -4.1 / -5.0 % (main before the landing, over
-    the first second: 8.3 % wrap, 13.9 % plain): the rigid belt's running start drifts off
-    its design tensions within the first second, not only a ringing of the drums'
-    transition bodies. Not found. Asserted: the issue's 3 %."""
+    0.1 s over 2 s, instantaneous readings against their readings at t = 0 (51 112 / 49 713
+    N; the node belt's 51 114 / 49 713 N). The node belt holds 0.75 % (last second's mean
+    +0.38 / +0.01 %).
+
+    Measured for the rigid belt on main a7cf348 (session 12, after the drums took back the
+    rigid contact's moment, docs/kubas.md): wrap joints 3.70 % at most (+3.70 % carry at
+    1.5 s, +3.26 % return at 1.3 s), last second's mean +1.82 / +1.00 %. Earlier in session
+    12, before the moment was returned: 10.6 %, mean -8.2 / -5.9 % (plain joints 15.3 %),
+    which looked like a drift. It is none: sampled every 5 ms the same probes' means hold
+    DIN to 0.73 % in every 0.25 s window (test above); the 0.1 s samples read the rigid
+    chain's running ripple (1.5 % rms, 6.4 % at worst, lines at 2, 3, 4 and 6 v/l; v/l =
+    10.2 Hz aliases to 0.2 Hz at this sampling, a slow wander on a 2 s record). Asserted:
+    the issue's 3 % on the instantaneous readings, which needs that ripple below it."""
     scene = beltrs.scenes.guo_wang_conveyor(length=60.0, start="running", formulation="rigid_body")
     sim = beltrs.Simulation(scene)
     r = beltrs.analysis.probe_run(sim, [(50.0, 0.4), (50.0, -0.4)], 2.0, 0.1)["tension"]
