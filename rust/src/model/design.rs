@@ -567,6 +567,17 @@ pub(super) fn place(
     let mut at = Vec::with_capacity(n);
     let mut positions = Vec::new();
     let mut previous: Vec<f64> = Vec::new();
+    // The contact rolls' arc lengths on the path (the landings' pivots), the same every pass.
+    let rolls_at: Vec<f64> = if wrap_joints {
+        scene
+            .idlers
+            .iter()
+            .filter(|d| d.contact_stiffness > 0.0)
+            .map(|d| crate::loads::project_on_path(path, V2::new(d.center[0], d.center[1])).0)
+            .collect()
+    } else {
+        Vec::new()
+    };
     for pass in 0..passes {
         at.clear();
         walk(l0, &extra, &factor, Some(&mut at))?;
@@ -611,17 +622,9 @@ pub(super) fn place(
                                 .fold(f64::NEG_INFINITY, f64::max);
                             0.5 * (s - behind).min(length)
                         };
-                        let roll = scene
-                            .idlers
+                        let roll = rolls_at
                             .iter()
-                            .filter(|d| d.contact_stiffness > 0.0)
-                            .map(|d| {
-                                let (t, _) = crate::loads::project_on_path(
-                                    path,
-                                    V2::new(d.center[0], d.center[1]),
-                                );
-                                (out * (t - s)).rem_euclid(length)
-                            })
+                            .map(|&t| (out * (t - s)).rem_euclid(length))
                             .filter(|&g| g > 4.0 * l0 && g < free)
                             .fold(free, f64::min);
                         // clear of the bodies resting on the roll
