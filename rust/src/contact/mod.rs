@@ -43,6 +43,15 @@ pub struct PulleyContacts {
     /// belt point per unit ω, m (rigid bodies resting on their ends,
     /// [`pulley_body_contact`]); empty: the pulley's radius for every contact.
     pub lever: Vec<f64>,
+    /// Per contact, the moment about the pulley's centre of a unit force along the
+    /// friction's direction at the belt point, m: (x − c) × t, where the friction acts on
+    /// the belt (rigid bodies resting on their ends: at the mass centre,
+    /// [`pulley_body_contact`]). Creep friction gives the pulley the friction's moment with
+    /// these arms (`friction::creep`), so that belt and pulley keep their angular momentum
+    /// (the stick-force solve takes the friction radius for all). The `lever` less a wrap
+    /// joint's slide (`belt::rigid::wrap_joint`), which is kinematic and no arm. Empty:
+    /// the pulley's radius for every contact.
+    pub arm: Vec<f64>,
 }
 
 impl PulleyContacts {
@@ -55,6 +64,7 @@ impl PulleyContacts {
         self.wrapped.clear();
         self.friction.clear();
         self.lever.clear();
+        self.arm.clear();
     }
     /// Number of nodes in contact.
     pub fn len(&self) -> usize {
@@ -294,7 +304,9 @@ pub fn pulley_body_contact(
         // its axis off the tangent), which would otherwise slide at the difference
         // (measured on case G's drums: 6 kN of drag).
         let t = V2::new(-c.normal.y, c.normal.x);
-        out.lever.push(V2::new(-rel.y, rel.x).dot(&t));
+        let arm = V2::new(-rel.y, rel.x).dot(&t);
+        out.lever.push(arm);
+        out.arm.push(arm);
         out.normal.push(c.normal);
         out.normal_force.push(c.normal_force);
         out.penetration.push(c.penetration);

@@ -292,6 +292,13 @@ pub struct MemoryColumn {
 /// takes the stick force within µs·N (a quasi-static limit) and the memory is not
 /// advanced.
 ///
+/// The pulley's torque is the moment of its share, Σ −f·arm over the contacts
+/// ([`PulleyContacts::arm`], the radius for nodes): the moment the belt points receive,
+/// so belt and pulley keep their angular momentum. For rigid bodies resting on their ends
+/// the arm is the mass centre's, ρ for a body resting on the drum, more or less for one
+/// landing or leaving (the same measure as the surface speed's lever, less a wrap joint's
+/// slide); a torque of ρ·Σ(−f) left the difference on the belt as an external torque.
+///
 /// `per_contact`, when given, receives each contact's friction force on the pulley along
 /// t, N, in contact order (a recording of contact forces; `None` costs nothing).
 #[allow(clippy::too_many_arguments)]
@@ -312,6 +319,7 @@ pub fn pulley_creep_friction(
     let (mu_s, mu_k) = (law.static_coefficient, law.kinetic_coefficient);
     let mut out = FrictionOutcome::default();
     let quasi_static = dt.is_some_and(|dt| !dt.is_finite());
+    let mut moment = 0.0;
     // The pulley's share of a stick: R²·Σm/I over the points on it (0 if it is held).
     let share = if pulley.inertia.is_finite() {
         let m_sum: f64 = contacts.node.iter().map(|&i| mass[i]).sum();
@@ -351,14 +359,20 @@ pub fn pulley_creep_friction(
             rates.push((idx, law.creep_rate(creep, speed)));
         }
         force[i] += t * f;
-        // On the pulley: −f along t.
+        // On the pulley: −f along t, with the moment the belt point receives.
         out.force -= t * f;
         out.tangential -= f;
+        moment -= contacts.arm.get(k).copied().unwrap_or(r) * f;
         out.slipping += usize::from(sliding);
         if let Some(list) = per_contact.as_deref_mut() {
             list.push(-f);
         }
     }
-    out.torque = r * out.tangential;
+    // The nodes' arms are all the radius: the sum as before, to the last bit.
+    out.torque = if contacts.arm.is_empty() {
+        r * out.tangential
+    } else {
+        moment
+    };
     out
 }
