@@ -131,18 +131,33 @@ def test_start_peak_agrees_between_formulations(runs):
 # sits on v/l here): the drums' contact moment, which no body took back, swung the tail drum
 # (session 12, docs/kubas.md "The contact's moment on the drum"). With the pulley taking it
 # back: +4.71 % (61.25 / 58.50 kN, raw at 1.22 s in the ramp; no growth). Still above 3 %,
-# hence the strict xfail. Shorter wrap-joint fades read +2.29 % at 1.5 % of the bend (1 %:
+# hence a strict xfail. Shorter wrap-joint fades read +2.29 % at 1.5 % of the bend (1 %:
 # +2.54 %, 0.75 %: +3.46 %; docs/kubas.md "The fades' share"), but there the undamped wrap
 # loop drifts by 3.4 % of its energy (rust/tests/rigid_wrap.rs holds 3 %); with a C² step at
-# 1 %: +2.39 %, energy kept, but the design landing's kernel test fails: not adopted.
-@pytest.mark.parametrize("formulation", [
-    "node_kelvin_voigt",
-    pytest.param("rigid_body", marks=pytest.mark.xfail(
-        strict=True, reason="rigid bodies' chordal action: raw peak +4.7 % over the peak below 2 Hz with "
-        "the builder's wrap joints (+35.1 % with plain joints); issue 12's target 3 %")),
-])
+# 1 %: +2.39 %, energy kept (14.0 J of the test's 20.2 J), which the builder now has (session
+# 13), with the design landing kept out of the fades (design_rigid::landings): +2.39 %
+# (59.78 / 58.39 kN, raw at 1.40 s). That figure is one crest of a ~0.9 kN rms ripple, and
+# it moves with the phase of the bodies on the drums: at body lengths 0.19 / 0.195 / 0.198 /
+# 0.2 m +2.91 / +3.91 / +2.32 / +3.31 % (main before, 4 % C1 fades: +5.75 / +4.62 / +9.11 /
+# +7.59 %, 0.196 m +4.71 %). The default passes; the next test keeps issue 12's target open
+# at the worst neighbour.
+@pytest.mark.parametrize("formulation", FORMULATIONS)
 def test_raw_peak_within_3_percent_of_the_peak_below_2_hz(runs, formulation):
     t1 = runs[formulation][1]["tension"][:, 0]
+    smooth = low_pass(t1, INTERVAL, 2.0)
+    assert t1.max() / smooth.max() - 1 < 0.03
+
+
+@pytest.mark.xfail(strict=True, reason="rigid bodies' chordal ripple: at 0.195 m bodies the raw peak reads +3.91 % "
+                   "over the peak below 2 Hz (0.196 m, the default: +2.39 %); issue 12's target 3 % at any phase")
+def test_rigid_raw_peak_within_3_percent_at_a_neighbouring_body_length():
+    """The raw-peak test above at 0.195 m bodies (the builder's default 0.196 m): the rigid
+    raw peak is one crest of the chain's ~0.9 kN rms ripple on the smooth peak, and where
+    that crest falls moves with the phase of the bodies on the drums. Measured (session 13,
+    C² fades of 1 %, landing out of the fades): 0.19 / 0.195 / 0.196 / 0.198 / 0.2 m
+    +2.91 / +3.91 / +2.39 / +2.32 / +3.31 %. Strict: passes once the ripple, not the phase,
+    sets the figure."""
+    t1 = start("rigid_body", element_length=0.195)[1]["tension"][:, 0]
     smooth = low_pass(t1, INTERVAL, 2.0)
     assert t1.max() / smooth.max() - 1 < 0.03
 

@@ -100,6 +100,24 @@ pub(crate) struct Landing {
     /// Over how much arc length (m) on the drum's side the depth goes from the landing
     /// joint's to the wrap's.
     pub blend: f64,
+    /// Where the landing joint would sit inside the first fade of its wrap joint
+    /// (`wrap_joint::FADE`): the bend it is given instead by turning the strand's last body
+    /// B about it ([`Tilt`]).
+    pub tilt: Option<Tilt>,
+}
+
+/// The landing joint's bend set to `bend` (rad) by turning B about it: the vertex curve kinks
+/// at B's other joint F (arc length `kink`), bent backwards there (`Landing::tilt`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Tilt {
+    /// ψ*, rad.
+    pub bend: f64,
+    /// Arc length of F, m.
+    pub kink: f64,
+    /// Arc length of D, the joint beyond the landing on the drum, m.
+    pub next: f64,
+    /// |C − F| of the last pass, m.
+    pub chord: f64,
 }
 
 /// The landings of the joints `at` (arc lengths of the walk's vertices `vertices` of the
@@ -109,6 +127,18 @@ pub(crate) struct Landing {
 /// T·sin(ψ/2) each, a wrap's ends T·sin(φ/2) (φ the bend of the joint beyond it on the
 /// drum), so the landing joint lies that share of the wrap's depth inside the corner
 /// circle R_e.
+///
+/// *Out of the fades.* The nearest joint's bend ψ₀ runs over 0 … a with the phase (the
+/// next joint takes over at a ↔ 0), so some phases would land it inside one of its wrap
+/// joint's fades (`wrap_joint::FADE`), where the faded slope x′ reaches 1.7·(R − ρ) and
+/// the bend couple x′·T on the strand's last body B is out of reach of any placement that
+/// keeps B in line with the strand. There the landing moves out of the fade, always by
+/// bending the strand's joints *backwards* (a forward bend would make them wrap joints in
+/// their own first fade): inside the last fade (ψ₀ > (1 − FADE)·a) the joint before it
+/// on the strand lands instead, bent backwards by a − ψ₀ (no wrap joint: the role needs a
+/// bend towards the drum; B becomes a drum body and its end there carries nothing into
+/// the drum: share 0); inside the first (ψ₀ < FADE·a) this joint lands bent by FADE·a,
+/// B turned about it ([`Tilt`]): B's other joint is bent backwards by FADE·a − ψ₀.
 pub(crate) fn landings(
     at: &[f64],
     vertices: &[V2],
@@ -131,21 +161,77 @@ pub(crate) fn landings(
                 let d = (t - s).rem_euclid(length);
                 d.min(length - d)
             };
-            let k = (0..n).min_by(|&i, &j| near(at[i]).total_cmp(&near(at[j])))?;
-            let d = (at[k] - s).rem_euclid(length);
-            let joint = if d <= 0.5 * length {
-                s + d
-            } else {
-                s + d - length
+            let k0 = (0..n).min_by(|&i, &j| near(at[i]).total_cmp(&near(at[j])))?;
+            let unwrap = |k: usize| {
+                let d = (at[k] - s).rem_euclid(length);
+                if d <= 0.5 * length {
+                    s + d
+                } else {
+                    s + d - length
+                }
             };
-            // the drum's side: after the joint entering (pivot before it), before leaving
-            let inner = if pivot < joint {
-                (k + 1) % n
-            } else {
-                (k + n - 1) % n
+            let entering = pivot < unwrap(k0);
+            // a joint's neighbours on the strand's side and on the drum's
+            let outer = |k: usize| {
+                if entering {
+                    (k + n - 1) % n
+                } else {
+                    (k + 1) % n
+                }
             };
-            let (psi, phi) = (turn(k), turn(inner));
-            let share = if phi > 0.0 {
+            let inner = |k: usize| {
+                if entering {
+                    (k + 1) % n
+                } else {
+                    (k + n - 1) % n
+                }
+            };
+            // The nearest joint's bend ψ₀ if the strand ran straight onto it: the turn from the
+            // strand's line (pivot to the joint) to the drum's body beyond it, in the order of
+            // arc length (towards the drum positive). It does not depend on which joint landed
+            // in the last pass (the joint and the one beyond it lie on the circle either way).
+            let p = (0..n).min_by(|&i, &j| {
+                let d = |t: f64| {
+                    let d = (t - pivot).rem_euclid(length);
+                    d.min(length - d)
+                };
+                d(at[i]).total_cmp(&d(at[j]))
+            })?;
+            let (c, d) = (vertices[k0], vertices[inner(k0)]);
+            let (dir_b, dir_a) = if entering {
+                (c - vertices[p], d - c)
+            } else {
+                (vertices[p] - c, c - d)
+            };
+            let cross = |a: V2, b: V2| a.x * b.y - a.y * b.x;
+            let sense = if cross(dir_a, center - c) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
+            let psi0 = sense
+                * if entering {
+                    cross(dir_b, dir_a).atan2(dir_b.dot(&dir_a))
+                } else {
+                    cross(dir_a, dir_b).atan2(dir_a.dot(&dir_b))
+                };
+            let pitch = l0 / radius;
+            let band = crate::belt::rigid::wrap_joint::FADE * pitch;
+            // Inside the last fade (ψ₀ > (1 − FADE)·a) the strand lands on the joint before
+            // instead (bent backwards by a − ψ₀: no wrap joint there); inside the first
+            // (ψ₀ < FADE·a) on this one, bent by FADE·a (B turned about it).
+            let k = if psi0 > pitch - band { outer(k0) } else { k0 };
+            let joint = unwrap(k);
+            let tilt = (psi0 < band).then(|| Tilt {
+                bend: band,
+                kink: unwrap(outer(k)),
+                next: unwrap(inner(k)),
+                chord: (vertices[k] - vertices[outer(k)]).norm(),
+            });
+            let (psi, phi) = (turn(k), turn(inner(k)));
+            let share = if k != k0 {
+                0.0 // bent backwards: its ends carry nothing into the drum
+            } else if phi > 0.0 {
                 ((0.5 * psi).sin() / (0.5 * phi).sin()).clamp(0.0, 1.0)
             } else {
                 1.0
@@ -158,6 +244,7 @@ pub(crate) fn landings(
                 corner: crate::belt::rigid::wrap_joint::WrapChord::new(l0, radius).corner,
                 share,
                 blend: l0,
+                tilt,
             })
         })
         .collect()
@@ -214,8 +301,39 @@ pub(crate) fn landed(
                         point(u)
                     }
                 };
-                let w = (t - k.pivot) / (k.joint - k.pivot);
-                return base(t) + (onto(point(k.joint)) - base(k.joint)) * w;
+                let target = onto(point(k.joint));
+                let Some(tilt) = k.tilt else {
+                    let w = (t - k.pivot) / (k.joint - k.pivot);
+                    return base(t) + (target - base(k.joint)) * w;
+                };
+                // B turned about the landing joint C so that C bends by ψ*: the curve runs
+                // from the pivot to F's place, then straight to C.
+                let d = onto_at(point(tilt.next), tilt.next);
+                let dir_a = if out < 0.0 { d - target } else { target - d }.normalize();
+                let cross = |a: V2, b: V2| a.x * b.y - a.y * b.x;
+                let sense = if cross(dir_a, k.center - target) >= 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                let turn = |v: V2, by: f64| {
+                    let (s, c) = by.sin_cos();
+                    V2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+                };
+                // in the order of arc length: B then A entering (A = B turned by σψ*), A then
+                // B leaving
+                let f = target + turn(dir_a, out * sense * tilt.bend) * (out * tilt.chord);
+                let on_strand = if out < 0.0 {
+                    t <= tilt.kink
+                } else {
+                    t >= tilt.kink
+                };
+                if on_strand {
+                    let w = (t - k.pivot) / (tilt.kink - k.pivot);
+                    return base(t) + (f - base(tilt.kink)) * w;
+                }
+                let w = (t - tilt.kink) / (k.joint - tilt.kink);
+                return f + (target - f) * w;
             }
             let drum_side = (k.pivot < k.joint) == (k.joint < k.tangent);
             if drum_side && t > dlo && t <= dhi {
@@ -613,8 +731,11 @@ mod tests {
     }
 
     /// The worst force across its axis (N), along it (N) and torque (N·m) on any body of
-    /// `scene`'s design start at t = 0.
-    fn worst_residual(scene: &crate::scene::Scene) -> (f64, f64, f64) {
+    /// `scene`'s design start at t = 0, and the bend ψ (rad) and slope x′(ψ) (m/rad,
+    /// `wrap_joint::draw_offset`) of every wrap joint active then.
+    fn worst_residual(scene: &crate::scene::Scene) -> (f64, f64, f64, Vec<(f64, f64)>) {
+        use crate::belt::rigid::sdes::{LinkState, SdeParams};
+        use crate::belt::rigid::wrap_joint::{draw_offset, for_each_wrap, WrapChord};
         let mut sim = crate::Simulation::new(scene).unwrap();
         let f = sim.forces().to_vec();
         let (mut across, mut along) = (0.0f64, 0.0f64);
@@ -629,36 +750,76 @@ mod tests {
             .iter()
             .map(|t| t.abs())
             .fold(0.0, f64::max);
-        (across, along, torque)
+        let l = sim.model.element_length();
+        let n = sim.state.body_angle.len();
+        let links = |i: usize| LinkState {
+            position: sim.state.position[i],
+            angle: sim.state.body_angle[i],
+            velocity: V2::zeros(),
+            angular_velocity: 0.0,
+            length: l,
+        };
+        let unit = |_: usize| SdeParams {
+            translational_stiffness: 1.0,
+            translational_damping: 0.0,
+            torsional_stiffness: 0.0,
+            torsional_damping: 0.0,
+        };
+        let mut wraps = Vec::new();
+        if scene.belt.pulley_contact == crate::scene::PulleyContact::Wrap {
+            for p in &scene.pulleys {
+                let w = WrapChord::new(l, p.radius);
+                let c = V2::new(p.center[0], p.center[1]);
+                for_each_wrap(&links, n, true, 0, n, c, p.radius, &unit, |a| {
+                    wraps.push((a.load.bend, draw_offset(a.load.bend, &w).1));
+                });
+            }
+        }
+        (across, along, torque, wraps)
     }
 
     #[test]
     fn the_strands_land_on_a_joint_and_the_transition_bodies_balance() {
         // With the wrap joints each strand runs straight onto one joint on the drum's vertex
         // circle, sunk by its own bend's load (`Landing`), whatever the phase at which the
-        // walk brings the chain onto the drum (n = 50 … 60 bodies: 0.2–0.17 m, every
-        // phase). Before (and still with plain joints) the vertex curve bends where the
-        // strand's line meets the circle, and the body spanning that point is bent at both
-        // its joints: with the wrap joints two boundary joints at once. Measured at t = 0
-        // over the eleven phases, worst body (plain joints, as main places both, in
-        // brackets): across its axis 675 N (7807 N; main with the wrap joints 7854 N);
-        // torque 297 N·m (776; 934). Along the axes 3.0 kN (2.2 kN): the bodies on the drum
-        // next to the landing joint (not found; the drum's friction holds that, frictionless
-        // here), not asserted.
+        // walk brings the chain onto the drum. Before (and still with plain joints) the
+        // vertex curve bends where the strand's line meets the circle, and the body spanning
+        // that point is bent at both its joints: with the wrap joints two boundary joints at
+        // once. Where the landing joint would sit inside one of its wrap joint's fades
+        // (`wrap_joint::FADE`, where the faded slope x′ reaches 1.7·(R − ρ)) the landing
+        // moves out of it (`landings`). Phases: n = 50 … 60 bodies on the 4 m loop (0.2–0.17
+        // m), and n = 56 with the drums 3.9 … 4.74 m apart in 3 mm steps (0.184–0.214 m
+        // bodies): the four landings' phases each turn through a whole pitch, about three
+        // steps per 1 % of it, so every fade is crossed.
+        // Measured at t = 0, worst body over the 11 + 281 scenes (plain joints, as main
+        // places them, over the eleven, in brackets): across its axis 965 N (7807 N); torque
+        // 380 N·m (776). With 1 % fades and the landing left inside them, 1205 N and 899 N·m.
+        // Along the axes 3.0 kN (2.2 kN): the bodies on the drum next to the landing joint
+        // (not found; the drum's friction holds that, frictionless here), not asserted.
         // Asserted: across under 1.2 kN (2.4 % of T: what is left is the landing joint's
         // gap, l·T/EA = 0.125 mm, straddling the circle, which sets its two ends' depths
-        // apart), and plain at least 5 times that; torque under 120 N·m (plain joints'
-        // landed, measured before they were left out: 82 N·m) plus the bend couple x′(ψ)·T
-        // the placement leaves on the strand's last body B (|x′| ≤ R − ρ, the offset's
-        // slope at the bend's ends: `wrap_joint`).
+        // apart), and plain at least 5 times that; no wrap joint active at t = 0 with a
+        // slope |x′(ψ)| above R − ρ (the unfaded offset's largest, at the bend's ends:
+        // `wrap_joint`), and each scene's torque under 120 N·m (plain joints' landed,
+        // measured before they were left out: 82 N·m) plus that bend couple (R − ρ)·T, which
+        // the placement leaves on the strand's last body B (not balanced: B would have to
+        // tilt against the strand by x′/l, up to 40 mrad, bending the strand's next joint).
+        // And the scan has landed a joint on the first fade's edge (the landing's bend set
+        // to FADE·a there) at least once.
         use crate::scene::PulleyContact;
         let t = 50e3;
-        let worst = |contact| {
-            let (mut across, mut along, mut torque, mut slope) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-            for n in 50..=60 {
-                let scene = case_g_loop(n, contact);
-                let (c, a, m) = worst_residual(&scene);
-                println!("{contact:?} n {n}: across {c:.1} N, along {a:.1} N, {m:.1} N·m");
+        let mut scenes: Vec<(usize, f64)> = (50..=60).map(|n| (n, 4.0)).collect();
+        scenes.extend((0..=280).map(|k| (56, 3.9 + 0.003 * k as f64)));
+        let worst = |contact, scenes: &[(usize, f64)]| {
+            let (mut across, mut along, mut torque) = (0.0f64, 0.0f64, 0.0f64);
+            let mut edge = 0;
+            for &(n, sep) in scenes {
+                let mut scene = case_g_loop(n, contact);
+                scene.pulleys[1].center = [sep, 0.0];
+                let (c, a, m, wraps) = worst_residual(&scene);
+                println!(
+                    "{contact:?} n {n} {sep:.3} m: across {c:.1} N, along {a:.1} N, {m:.1} N·m"
+                );
                 across = across.max(c);
                 along = along.max(a);
                 torque = torque.max(m);
@@ -666,23 +827,33 @@ mod tests {
                     .unwrap()
                     .model
                     .element_length();
-                slope = slope.max(0.4 - rest_radius(l, 0.4));
+                let (slope, pitch) = (0.4 - rest_radius(l, 0.4), l / 0.4);
+                for &(bend, dx) in &wraps {
+                    assert!(
+                        dx.abs() <= slope * (1.0 + 1e-9),
+                        "n {n} {sep} m: a wrap joint bent by {} of the pitch, x′ {dx} m/rad",
+                        bend / pitch
+                    );
+                    let fade = crate::belt::rigid::wrap_joint::FADE * pitch;
+                    edge += usize::from((bend - fade).abs() < 0.02 * fade);
+                }
+                assert!(
+                    contact == PulleyContact::Nodes || m < 120.0 + slope * t,
+                    "n {n} {sep} m: {m} N·m ({} N·m)",
+                    slope * t
+                );
             }
             println!(
-                "{contact:?}: worst across {across:.1} N, along {along:.1} N, {torque:.1} N·m"
+                "{contact:?}: worst across {across:.1} N, along {along:.1} N, {torque:.1} N·m; {edge} landings on a fade's edge"
             );
-            (across, torque, slope)
+            (across, edge)
         };
-        let (across, torque, slope) = worst(PulleyContact::Wrap);
-        let (plain, _, _) = worst(PulleyContact::Nodes);
+        let (across, edge) = worst(PulleyContact::Wrap, &scenes);
+        let (plain, _) = worst(PulleyContact::Nodes, &scenes[..11]);
         assert!(
             across < 0.024 * t && plain > 5.0 * across,
             "{across} N, plain {plain} N"
         );
-        assert!(
-            torque < 120.0 + slope * t,
-            "{torque} N·m ({} N·m)",
-            slope * t
-        );
+        assert!(edge > 0, "no landing on a fade's edge");
     }
 }

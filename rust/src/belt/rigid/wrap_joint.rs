@@ -23,8 +23,8 @@
 //! take the contact's 10⁻⁴ rad) and the strand's (bent by 0, give or take its vibration)
 //! would take a torque T·(R − ρ) whenever their bend crossed the end (the relaxation did not
 //! converge: residual 1.6·10⁻² on case G at 60 m). So x fades in over the first and out
-//! over the last [`FADE`] = 4 % of the bend (0.02 rad on case G, far above that noise):
-//! the energy is C¹, and the draw is the string's but for those two ends.
+//! over the last [`FADE`] = 1 % of the bend (4.9 mrad on case G, far above that noise) by
+//! a C² step: the energy is C², and the draw is the string's but for those two ends.
 //!
 //! *The joint.* The boundary joint's spring sees g = d − x(θ)·t_C instead of d, with d its
 //! gap (Kubas eq. 22) and t_C the drum's tangent at C in the bodies' order (A's axis turned
@@ -86,12 +86,17 @@ impl WrapChord {
 
 /// The share of the pitch over which a wrap joint's offset fades in and out at both ends of
 /// its bend (module docs, "Ends").
-pub const FADE: f64 = 0.04;
+///
+/// 1 %: the chordal residue lives in the fades and falls as they shorten (case G's 60 m
+/// start, T1 above 2 Hz rms over the ramp's second second: 1310 N at 4 % with the former
+/// C¹ step, 914 N at 1 % with this C² one; docs/kubas.md, "The fades' share"); 4.9 mrad on
+/// case G is still 49 times the drum joints' 10⁻⁴ rad.
+pub const FADE: f64 = 0.01;
 
 /// x and dx/dψ (m, m/rad) for a boundary joint bent by ψ: how much further the chain
 /// than the string has drawn the strand, x = R_e·sin θ − R·θ with θ = ψ − a/2 (module
 /// docs), faded in over the first and out over the last [`FADE`]·a of the bend by a
-/// smooth step (3u² − 2u³); (0, 0) outside 0 < ψ < a.
+/// C² step (6u⁵ − 15u⁴ + 10u³); (0, 0) outside 0 < ψ < a.
 #[inline]
 pub fn draw_offset(bend: f64, w: &WrapChord) -> (f64, f64) {
     if !(bend > 0.0 && bend < w.pitch) {
@@ -105,7 +110,10 @@ pub fn draw_offset(bend: f64, w: &WrapChord) -> (f64, f64) {
         if u >= 1.0 {
             (1.0, 0.0)
         } else {
-            (u * u * (3.0 - 2.0 * u), 6.0 * u * (1.0 - u))
+            (
+                u * u * u * (10.0 + u * (6.0 * u - 15.0)),
+                30.0 * u * u * (1.0 - u) * (1.0 - u),
+            )
         }
     };
     let (s0, d0) = step(bend / band);
@@ -417,7 +425,7 @@ mod tests {
         }
         // A whole pitch draws l, as the string's R·a: the offset closes at both ends.
         assert!((draw(0.5 * w.pitch) - w.length).abs() < 1e-15);
-        // C¹ at both ends: value and slope vanish there.
+        // At both ends value and slope vanish (and, the step being C², the curvature).
         for bend in [1e-9, w.pitch - 1e-9] {
             let (x, dx) = draw_offset(bend, &w);
             assert!(x.abs() < 1e-15 && dx.abs() < 1e-6, "{bend}: {x} {dx}");
