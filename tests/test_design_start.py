@@ -543,8 +543,8 @@ def test_rigid_body_running_design_start_of_case_g_holds_the_static_tensions():
 
 
 @pytest.mark.xfail(strict=True, reason="open: the rigid belt's running ripple at multiples of v/l: the probes' "
-                   "0.1 s samples leave their t = 0 readings by 3.70 % (wrap joints; node belt 0.75 %); the means "
-                   "hold DIN to 0.73 % (test above)")
+                   "0.1 s samples leave their t = 0 readings by 5.97 % (wrap joints, 1 % C2 fades; node belt 0.75 %); "
+                   "the means hold DIN to 0.63 % (test above)")
 def test_rigid_body_running_design_start_of_case_g_stays_within_3_percent():
     """``start="running"`` counterpart of the rest start above: case G at 60 m running at
     2 m/s from DIN 22101's running tensions, probes 10 m either side of the head drum every
@@ -560,7 +560,12 @@ def test_rigid_body_running_design_start_of_case_g_stays_within_3_percent():
     DIN to 0.73 % in every 0.25 s window (test above); the 0.1 s samples read the rigid
     chain's running ripple (1.5 % rms, 6.4 % at worst, lines at 2, 3, 4 and 6 v/l; v/l =
     10.2 Hz aliases to 0.2 Hz at this sampling, a slow wander on a 2 s record). Asserted:
-    the issue's 3 % on the instantaneous readings, which needs that ripple below it."""
+    the issue's 3 % on the instantaneous readings, which needs that ripple below it.
+
+    Session 13 (the wrap joints' fades 1 % with a C² step, the landing kept out of them):
+    5.97 % at 1.1 s. The ripple itself fell (every 5 ms over the second second: 1.32 / 1.45
+    % rms, 5.50 % at worst, windows' means within 0.63 %); the 0.1 s samples hit other
+    crests of it."""
     scene = beltrs.scenes.guo_wang_conveyor(length=60.0, start="running", formulation="rigid_body")
     sim = beltrs.Simulation(scene)
     r = beltrs.analysis.probe_run(sim, [(50.0, 0.4), (50.0, -0.4)], 2.0, 0.1)["tension"]
