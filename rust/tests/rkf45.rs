@@ -189,6 +189,50 @@ fn step_control_rejects_and_recovers() {
 }
 
 #[test]
+fn shortened_steps_do_not_compound_the_next_step() {
+    // Landing on a grid much finer than the step the error allows (a recording every 10⁻⁴
+    // s on the oscillator, which allows steps of about 0.05 s at 10⁻⁸): every step is
+    // shortened to the grid. The next step is the one the error allows, not grown by the
+    // growth factor of each shortened step in turn: compounded, ×5 a step (the first
+    // shortened step read 5× the allowed step, 0.40 s), it overflows after about 440
+    // steps, and a new integrator refuses the infinite initial step.
+    let p = Rkf45Params {
+        relative_tolerance: 1e-8,
+        absolute_tolerance: 1e-12,
+        ..Default::default()
+    };
+    let mut rk = Rkf45::new(p, 2).unwrap();
+    let (mut t, mut y) = (0.0, [1.0, 0.0]);
+    let mut f = oscillator;
+    // The step the error allows, from a free run.
+    for _ in 0..20 {
+        rk.step(&mut t, &mut y, 10.0, &mut f).unwrap();
+    }
+    let allowed = rk.next_step();
+    assert!(allowed > 1e-2 && allowed < 1.0, "{allowed}");
+    for k in 1..=2000 {
+        let to = t + 1e-4;
+        rk.step(&mut t, &mut y, to, &mut f).unwrap();
+        assert_eq!(t, to);
+        let next = rk.next_step();
+        assert!(
+            next.is_finite() && next < 2.0 * allowed,
+            "step {k}: {next} s"
+        );
+    }
+    // Still on the solution, and a new integrator takes the step over.
+    assert!((y[0] - t.cos()).abs() < 1e-6 && (y[1] + t.sin()).abs() < 1e-6);
+    let again = Rkf45::new(
+        Rkf45Params {
+            initial_step: rk.next_step(),
+            ..p
+        },
+        2,
+    );
+    assert!(again.is_ok());
+}
+
+#[test]
 fn minimum_step_error_names_time_and_step() {
     // y' = y² from y(0) = 1 blows up at t = 1.
     let mut f = |_t: f64, y: &[f64], dy: &mut [f64]| dy[0] = y[0] * y[0];

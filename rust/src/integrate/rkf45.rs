@@ -11,7 +11,8 @@
 //! Error norm (Hairer, Nørsett & Wanner, Solving ODEs I, II.4): the root mean square over
 //! the components of eᵢ/(atol + rtol·max(|yᵢ|, |ŷᵢ|)). A step is accepted when the norm is
 //! ≤ 1. The next step is h·min(max_growth, max(max_shrink, safety·err^(−1/5))), and it does
-//! not grow right after a rejection. A step that would fall below `min_step` is an error
+//! not grow right after a rejection; a step shortened to land on `t_end` keeps the
+//! unshortened one (raised to that product at most, never grown by it). A step that would fall below `min_step` is an error
 //! naming the time and the step, never a silent loss of accuracy.
 //!
 //! The first stage k₀ = f(t, y) depends only on the step's start, so it is evaluated once
@@ -483,10 +484,18 @@ impl Rkf45 {
                 self.stats.accepted += 1;
                 self.stats.smallest_step = self.stats.smallest_step.min(h);
                 self.stats.largest_step = self.stats.largest_step.max(h);
-                // A shortened last step says nothing about the step the error allows.
+                // A shortened last step says nothing about the step the error allows beyond
+                // itself: it keeps the unshortened step, and may raise it to h·factor but
+                // never grow it by its own factor. (Growing it by the factor compounded
+                // over a run of shortened steps, RKF45 landing on a recording grid finer
+                // than its step: on a creep drive recorded every 0.1 of the stable step
+                // the next step reached 10²⁷² s in 700 steps, then overflowed, and the
+                // next call refused the infinite initial step.)
                 let base = if last { self.h.max(h) } else { h };
                 self.h = if rejected_here {
                     base * factor.min(1.0)
+                } else if last && factor > 1.0 {
+                    self.h.max(h * factor)
                 } else {
                     base * factor
                 };
