@@ -182,3 +182,26 @@ def test_builders_300m_conveyor_grips_its_drum_through_its_default_start():
     assert contact.min() > 0
     assert np.all(slipping < contact), "the belt slides on the head drum"
     assert worst < 2e-3, worst
+
+
+def test_capstan_reads_the_wrap_contacts_arc():
+    """Result.capstan on a builder conveyor (wrap contact on the drums): its nodes ride the
+    surface within micrometres either side, so before session 13 the arc of nodes strictly
+    inside the radius broke into runs of 2-4 nodes, the wrap read 0.8-1.45 rad and the
+    utilisation 1.0-1.17 in steady running at T1/T2 = 1.5 (a slip that was not there). The
+    300 m conveyor started running: the head drum's wrap within 0.3 rad of pi (the turn
+    between the free elements next to the arc's end nodes; measured 2.91-3.01), its tight and
+    slack sides DIN 22101's T1 and T2 within 3 % (measured 24.62 against 24.60 kN, 16.36
+    against 16.39 kN at the start; the run settles by some 1 kN in the first second), and the
+    utilisation the capstan formula of them."""
+    c = conveyor_300(start="running")
+    res = beltrs.Simulation(c.scene()).run(0.2, record_interval=0.1)
+    h = res.pulley_names.index("head")
+    cap = res.capstan(friction=MU_K)
+    din = c.statics().drive("head")
+    assert np.all(abs(cap.wrap[:, h] - math.pi) < 0.3), cap.wrap[:, h]
+    assert cap.tight[:, h] == pytest.approx(din.tight, rel=0.03)
+    assert cap.slack[:, h] == pytest.approx(din.slack, rel=0.03)
+    expect = (cap.tight[:, h] - cap.slack[:, h]) / (cap.slack[:, h] * (np.exp(MU_K * cap.wrap[:, h]) - 1))
+    assert cap.utilisation[:, h] == pytest.approx(expect, rel=1e-12)
+    assert np.all(cap.utilisation[:, h] < 0.35)  # T1/T2 about 1.5: a quarter of the grip used
