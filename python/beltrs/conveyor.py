@@ -802,7 +802,7 @@ class Conveyor:
         ``ratio`` is T₁/T₂ at the drum against time; the belt slides where it exceeds
         e^{µ_k·π}), or None where the model does not apply: a drive that is not speed
         controlled (a ``motor`` started direct on line, a ``follow`` drive) or more than one
-        drive. Milliseconds."""
+        drive. Tens of milliseconds."""
         from .design_start import at_rest
         from .start_grip import Loop, start_ratio
 
