@@ -29,6 +29,7 @@ SI units throughout; a capacity is in t/h (the unit engineers use), converted at
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
 
@@ -188,6 +189,10 @@ def _return_default() -> IdlerSet:
 
 
 LOCATIONS = ("head", "tail")
+
+#: Takeup tensions chosen with the start's dynamics (:meth:`Conveyor.takeup_tension`), by the
+#: conveyor's repr: a scene asks for it several times, each a few rounds of the lumped model.
+_START_GRIP_CACHE: dict[str, float] = {}
 CONTROLS = ("vfd", "ideal")
 
 
@@ -778,6 +783,10 @@ class Conveyor:
         return_min = min(t for t, lab in zip(p.tension, p.label) if lab.startswith(("head", "return")))
         raise_by = max(raise_by, sag_carry - carry_min, sag_return - return_min)
         floor = tension = base + raise_by
+        with np.printoptions(threshold=sys.maxsize):  # every field in full (no "..." in long arrays)
+            key = repr(self)  # the choice is a function of the fields alone
+        if start_dynamics and key in _START_GRIP_CACHE:
+            return _START_GRIP_CACHE[key]
         for _ in range(20 if start_dynamics else 0):  # the start's overshoot: the lumped model's fixed point
             start = self.start_grip(tension)
             if start is None:
@@ -789,7 +798,12 @@ class Conveyor:
             tension += rise
             if abs(rise) < 1.0:  # N
                 break
-        return float(math.ceil(tension / 1e3) * 1e3)
+        chosen = float(math.ceil(tension / 1e3) * 1e3)
+        if start_dynamics:
+            if len(_START_GRIP_CACHE) >= 64:
+                _START_GRIP_CACHE.pop(next(iter(_START_GRIP_CACHE)))
+            _START_GRIP_CACHE[key] = chosen
+        return chosen
 
     def start_grip(self, takeup_tension: Optional[float] = None) -> Optional[StartRatio]:
         """The drive drum's tensions through the start, the belt held on the drum: the
