@@ -205,3 +205,34 @@ def test_capstan_reads_the_wrap_contacts_arc():
     expect = (cap.tight[:, h] - cap.slack[:, h]) / (cap.slack[:, h] * (np.exp(MU_K * cap.wrap[:, h]) - 1))
     assert cap.utilisation[:, h] == pytest.approx(expect, rel=1e-12)
     assert np.all(cap.utilisation[:, h] < 0.35)  # T1/T2 about 1.5: a quarter of the grip used
+
+
+def test_takeup_on_the_drive_drum_halves_the_start_force_by_hand():
+    """The rigid loop of test_rigid_belt_limit_by_hand with its gravity takeup on the drive
+    drum: the carriage stays put, so T1 + T2 = 2 T at the drum, and T1 - T2 is the whole
+    loop's start force F = (m_c L + m_r L + m_p) a + (w_c + w_r) L = 23700 a + 4000 N (the
+    tail pulley's surface, 700 kg, now between the strands): at a = pi/20, 7722.8 N, so
+    T2 = T - 3861.4 N, and T1/T2 <= e^(0.35 pi) needs T >= 3861.4 + 7722.8 / 2.00287 =
+    7717.3 N. DIN's rule as the builder applied it takes T2 = T at a takeup on the drive drum
+    (``Conveyor._mass_to_takeup`` is 0 there) and misses this half of F; the lumped model does
+    not (the 300 m conveyor with its takeup on the head drum: 25 kN by DIN's rules, 44 kN with
+    the start's dynamics). Tolerance 1 %: the resistance's switch-on rings the undamped stiff
+    loop (test_rigid_belt_limit_by_hand)."""
+    from dataclasses import replace
+
+    curve = beltrs.StartCurve("harrison", speed=2.0, ramp=20.0)
+
+    def speed(t):
+        return curve.speed_at(t)
+
+    a = math.pi / 20
+    force = 23700 * a + 4000
+    assert force == pytest.approx(7722.8, abs=0.1)
+    need = force / 2 + force / (GRIP - 1)
+    assert need == pytest.approx(7717.3, abs=0.1)
+    loop = replace(rigid_loop(10e3), takeup="head")
+    r = start_ratio(loop, speed, 20.0)
+    k = np.argmin(abs(r.time - 10.0))
+    assert r.tight[k] == pytest.approx(force / 2, rel=0.01)
+    assert -r.slack[k] == pytest.approx(force / 2, rel=0.01)
+    assert 10e3 + r.takeup_for(GRIP) == pytest.approx(need, rel=0.01)
