@@ -31,9 +31,10 @@ the 9.96 Hz cogging line), 300 m 0.011, 0.013; after the 4 s start case G 0.044:
 
     python benches/ripple_fixtures.py case_g --start running --steady 8 --windows 2 --spectrum 6
 
-The 300 m conveyor's takeup tension (``--takeup`` N per strand; the builder's 22 kN by
-default, with which the belt slides on the head drum through the 4 s start): session 11,
-0.179 at 22 kN, 0.018 at 30 kN (tests/test_takeup_swing.py, docs/stops-takeups.md):
+The 300 m conveyor's takeup tension (``--takeup`` N per strand; by default the builder's:
+22 kN in session 11, with which the belt slides on the head drum through the 4 s start,
+0.179; 28 kN from session 11's grip rule, 0.029; 31 kN since session 13's grip through the
+start's dynamics, 0.0176; tests/test_takeup_swing.py, docs/stops-takeups.md), 0.018 at 30 kN:
 
     python benches/ripple_fixtures.py conveyor --takeup 30000
 """

@@ -33,9 +33,11 @@ the engine's record of takeup travel, T1 and T2 10 m from the head over 16 s):
   strand's own acceleration force in the start (26.4 kg/m x 300 m x 0.785 m/s^2 = 6.2 kN),
   which the takeup at the tail cannot supply to the drum: in the start T2 at the drum
   falls to 13 kN. This was a design-rule gap of the builder, not an error of the engine:
-  since session 11 the rule counts that force (``Conveyor._mass_to_takeup``) and chooses
-  28 kN, which holds the belt on the drum (the last test here). The tests of the sliding
-  swing keep the 22 kN takeup (``sliding_scene``).
+  since session 11 the rule counts that force (``Conveyor._mass_to_takeup``) and chose
+  28 kN; the engine's belt still slid there for 0.6 s of the ramp (session 13), and since
+  session 13 the rule also takes the start's dynamic overshoot (``Conveyor.start_grip``)
+  and chooses 31 kN, which holds the belt on the drum (the last test here). The tests of
+  the sliding swing keep the 22 kN takeup (``sliding_scene``).
 """
 
 from dataclasses import replace
@@ -239,19 +241,25 @@ def test_after_the_start_the_engines_swing_is_the_lumped_models_with_the_belt_sl
     assert fit_swing(held["time"], held["travel"], 4.5, 8.5)[1] < ae / 4
 
 
-def test_the_builders_takeup_counts_the_return_strands_start_force():
+def test_the_builders_takeup_counts_the_return_strands_start_force_and_the_starts_overshoot():
     """Since session 11 the builder's grip rule counts the return strand's acceleration force
     between the head drum and the tail takeup (DIN 22101's start tension distribution,
-    ``Conveyor._mass_to_takeup``): it chooses 28 kN for this conveyor and start (22 kN
-    before). The lumped model held on the drum then needs T1/T2 of 3.11 at most through the
-    start against the grip e^(mu_k pi) = 3.00 (3.88 at 22 kN, 2.91 at 30 kN; measured,
-    session 11): the rule designs for the rigid belt's start force, and what is left is the
-    start's dynamic overshoot over it, which only a dynamic run shows. Asserted: within 5 %
-    of the grip at the builder's takeup (at 22 kN: 29 % over). The engine at 28 kN: the
-    torque after the start no longer reverses (-4.39 ... -2.06 kN*m, figure 0.029:
-    tests/test_ripple.py's after-start test, which this takeup passes)."""
+    ``Conveyor._mass_to_takeup``): DIN's two rules choose 28 kN for this conveyor and start
+    (22 kN before). The lumped model held on the drum then still needs T1/T2 of 3.11 through
+    the start against the grip e^(mu_k pi) = 3.00 (3.88 at 22 kN, 2.91 at 30 kN; measured,
+    session 11): the start's dynamic overshoot over the rigid belt's force. The engine at
+    28 kN slid on the drum for 0.60 s between 1.44 and 2.79 s, at up to 17.4 mm/s (session
+    13; held there by a lagging of mu = 1, its T1/T2 10 m from the drum reads 3.17).
+    Since session 13 the rule takes that overshoot from a lumped model of its own
+    (``Conveyor.start_grip``, beltrs.start_grip) and chooses 31 kN; there this model reads
+    2.830 and the engine grips (no instant with the whole arc slipping, the belt behind the
+    drum by 0.86 mm/s at most, T1/T2 10 m from the drum 2.88; session 13)."""
     c = conveyor_300(ramp=RAMP)
-    assert c.takeup_tension() == 28e3
+    assert c.takeup_tension(start_dynamics=False) == 28e3
+    assert c.takeup_tension() == 31e3
     grip = np.exp(MU_K * np.pi)
+    din = conveyor_300(ramp=RAMP, takeup=beltrs.conveyor.TakeupSpec(location="tail", tension=28e3))
+    r = from_scene(din.scene(), 300.0, n=10).start(2.0, RAMP, RAMP + 0.5)
+    assert (r["T1"] / r["T2"]).max() > 1.03 * grip  # measured 3.108
     r = from_scene(c.scene(), 300.0, n=10).start(2.0, RAMP, RAMP + 0.5)
-    assert (r["T1"] / r["T2"]).max() < 1.05 * grip
+    assert (r["T1"] / r["T2"]).max() < 0.96 * grip  # measured 2.830
