@@ -214,7 +214,9 @@ def belt_element_length(target: float, pitches: Sequence[float], *, formulation:
     tests/test_case_g_formulations.py) the raw peak tight-side tension is +4.71 % over its
     peak below 2 Hz at 0.196 m bodies (a = 0.49 rad), +3.51 % at 0.148 m, +2.49 % at
     0.130 m, **+1.46 % at 0.1185 m** (a = 0.296, this rule's choice), +1.11 … +1.54 % at
-    the lengths from 0.095 to 0.115 m: issue 12's 3 % with margin from a ≈ 0.3 down. Cost:
+    the lengths from 0.095 to 0.115 m: issue 12's 3 % with margin from a ≈ 0.3 down (on
+    case G at 150 m, Harrison 10 s: +4.32 % at 0.1185 m, a mid-ramp burst not traced,
+    +1.6 … +2.4 % at 0.108–0.124 m; +6.17 % at 0.196 m). Cost:
     the bodies and the stable step both scale with l, so a run costs about (0.196 / l)²:
     measured 2.7× the 0.196 m bodies' (element-steps) on case G. The node belt (wrap
     contact on its drums, no chordal ripple) keeps ``target``.
