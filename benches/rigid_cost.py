@@ -10,7 +10,8 @@ Scenes (each with both belt formulations, ``belt.formulation``):
 
 - ``conveyor``: ``beltrs.scenes.guo_wang_conveyor(length=200, start="running")``, case G's
   conveyor at 200 m (about 2000 elements of 0.2 m, 232 idlers, material, speed-controlled
-  head drive, tail takeup), from its running design start, 200 steps of warm-up.
+  head drive, tail takeup; the rigid belt about 3400 bodies of 0.1185 m since session 13,
+  the builders' l <= 0.3 R), from its running design start, 200 steps of warm-up.
 - ``case_k``: ``beltrs.scenes.kubas_case_k()`` (150 elements, two pulleys with Kubas's
   nonlinear contact, stick-force friction, torque drive), relaxed, 20 000 steps of warm-up.
 - ``case_k_ends``: the same with the linear penalty contact (the rigid bodies rest on the

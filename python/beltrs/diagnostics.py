@@ -14,7 +14,8 @@ Categories (each a subclass of :class:`BeltrsWarning`, itself a ``UserWarning``)
   (the direction its loads carry material, loading point to discharge point).
 - :class:`IdlerContactWarning`: an idler is so far from the belt that it never touches it.
 - :class:`AccuracyWarning`: the scene relies on a default setting that is known to be
-  inaccurate for a scene of its kind.
+  inaccurate for a scene of its kind, or a builder is given rigid bodies longer than its
+  rule (0.3 × the drum radius).
 
 The checks are cheap (one force evaluation, or geometry of the compiled model); none of
 them changes a result.
@@ -59,7 +60,9 @@ class IdlerContactWarning(BeltrsWarning):
 
 
 class AccuracyWarning(BeltrsWarning):
-    """A default setting is known to be inaccurate for this scene."""
+    """A default setting is known to be inaccurate for this scene, or (from the builders)
+    a rigid-body belt's explicit body length is longer than their rule
+    (:func:`beltrs.layout.check_rigid_body_length`)."""
 
 
 #: Largest out-of-balance nodal force, as a fraction of the largest of (belt tension,

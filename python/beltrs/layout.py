@@ -19,7 +19,14 @@ import numpy as np
 from . import _beltrs
 from .scene import Idler
 
-__all__ = ["Profile", "element_length_off_pitches", "idlers_along"]
+__all__ = [
+    "Profile",
+    "RIGID_BODY_ANGLE",
+    "belt_element_length",
+    "check_rigid_body_length",
+    "element_length_off_pitches",
+    "idlers_along",
+]
 
 
 @dataclass(frozen=True)
@@ -181,6 +188,83 @@ def element_length_off_pitches(target: float, pitches: Sequence[float]) -> float
         if off(length):
             return float(length)
     return float(target)  # pitches whose ratios allow none (not found for real rows): the target
+
+
+#: The rigid-body belt's largest body angle on a drum, rad (0.3 rad, 17.2°): the builders
+#: give its bodies at most ``RIGID_BODY_ANGLE`` × the smallest drum radius
+#: (:func:`belt_element_length`). Measured on case G (60 m start of
+#: tests/test_case_g_formulations.py, 0.4 m drums): the raw peak over the peak below 2 Hz is
+#: +4.71 % at 0.196 m bodies (0.49 rad), +1.46 % at 0.1185 m (0.296 rad), +1.1 … +1.5 % at
+#: 0.095 … 0.12 m; docs/kubas.md, "The bodies' length on the drums".
+RIGID_BODY_ANGLE = 0.3
+
+
+def belt_element_length(target: float, pitches: Sequence[float], *, formulation: str,
+                        drum_radius: float) -> float:
+    """The builders' element length, m: the longest not over ``target`` (the node belt's
+    choice: each builder's own, documented there), shortened for the rigid-body belt to
+    ``RIGID_BODY_ANGLE`` × ``drum_radius``, then taken off the idler ``pitches``
+    (:func:`element_length_off_pitches`).
+
+    Why the rigid belt's bodies are shorter (docs/kubas.md, "The bodies' length on the
+    drums"): a chain of rigid bodies wraps a drum as a polygon of body angle a = l/R, and
+    draws its strands at a speed that varies with a at the rate v/l (a chain on a sprocket;
+    the wrap joints take most of that out, not all): the raw tension's chordal ripple
+    falls as about a². On case G (0.4 m drums, 60 m start of
+    tests/test_case_g_formulations.py) the raw peak tight-side tension is +4.71 % over its
+    peak below 2 Hz at 0.196 m bodies (a = 0.49 rad), +3.51 % at 0.148 m, +2.49 % at
+    0.130 m, **+1.46 % at 0.1185 m** (a = 0.296, this rule's choice), +1.11 … +1.54 % at
+    the lengths from 0.095 to 0.115 m: issue 12's 3 % with margin from a ≈ 0.3 down (on
+    case G at 150 m, Harrison 10 s: +4.32 % at 0.1185 m, a mid-ramp burst not traced,
+    +1.6 … +2.4 % at 0.108–0.124 m; +6.17 % at 0.196 m). Cost:
+    the bodies and the stable step both scale with l, so a run costs about (0.196 / l)²:
+    measured 2.7× the 0.196 m bodies' (element-steps) on case G. The node belt (wrap
+    contact on its drums, no chordal ripple) keeps ``target``.
+
+    Args:
+        target: the longest element length wanted, m, > 0.
+        pitches: the idler pitches, m, each > 0 (e.g. carry and return).
+        formulation: :attr:`beltrs.Belt.formulation` (``"node_kelvin_voigt"`` or
+            ``"rigid_body"``).
+        drum_radius: the smallest drum radius the belt wraps, m, > 0.
+
+    Returns:
+        the element length, m.
+
+    Raises:
+        beltrs.SceneError: a bad target, pitch or radius, named with its value.
+    """
+    if formulation == "rigid_body":
+        if not (math.isfinite(drum_radius) and drum_radius > 0):
+            raise _error("drum_radius", drum_radius, "must be a finite number > 0 (m)")
+        target = min(target, RIGID_BODY_ANGLE * drum_radius)
+    return element_length_off_pitches(target, pitches)
+
+
+def check_rigid_body_length(length: float, drum_radius: float, *, field: str = "element_length",
+                            leave: str = "element_length") -> None:
+    """Warn (:class:`beltrs.AccuracyWarning`) when a rigid-body belt's explicit body length
+    ``length`` (m, given as ``field``) is longer than :func:`belt_element_length`'s rule
+    allows on drums of radius ``drum_radius`` (m, the smallest): its raw tension peaks then
+    carry the bodies' chordal excess (case G: +4.71 % over the peak below 2 Hz at 0.196 m
+    bodies on 0.4 m drums, against +1.46 % at the rule's 0.1185 m). The length is used as
+    given. ``leave``: the setting to leave at None for the rule's length, named in the
+    message."""
+    limit = RIGID_BODY_ANGLE * drum_radius
+    if not length > limit * (1 + 1e-9):
+        return
+    from .diagnostics import AccuracyWarning, _warn
+
+    _warn(
+        AccuracyWarning,
+        f"{field} = {length!r}: rigid-body belt's bodies of {length:.4g} m are longer than the rule "
+        f"l <= {RIGID_BODY_ANGLE:g} x the smallest drum radius ({RIGID_BODY_ANGLE:g} x {drum_radius:g} m = "
+        f"{limit:.4g} m; body angle {length / drum_radius:.3f} rad on the drum). Their chordal action on the "
+        f"drums raises raw tension peaks about as (l/R)^2: case G's raw peak tight-side tension is +4.71 % "
+        f"over its peak below 2 Hz at 0.196 m bodies on 0.4 m drums, +1.46 % at the rule's 0.1185 m "
+        f"(issue 12's target 3 %). The length is used as given; read peaks through beltrs.analysis.low_pass, "
+        f"or leave {leave} at None for the rule's length (docs/kubas.md, \"The bodies' length on the drums\").",
+    )
 
 
 def idlers_along(

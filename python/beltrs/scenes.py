@@ -9,7 +9,7 @@ from typing import Any, Optional
 from . import _beltrs, din22101
 from ._beltrs import SceneError
 from .conveyor import check_control
-from .layout import element_length_off_pitches
+from .layout import belt_element_length, check_rigid_body_length
 from .scene import (
     Belt,
     Drive,
@@ -372,7 +372,12 @@ def guo_wang_conveyor(
       rolls, docs/stability.md, and 30 degrees of wrap per element on the 0.8 m drum, at
       which neither idler pitch is within an eighth of a whole number of elements:
       6.125 and 15.3125 per pitch, so the rolls' gravity cogging does not add up in phase,
-      :func:`beltrs.layout.element_length_off_pitches`; 0.2 m until session 11); wrap contact on the drums
+      :func:`beltrs.layout.element_length_off_pitches`; 0.2 m until session 11). The
+      rigid-body belt's bodies are 0.1185 m (since session 13): at most 0.3 × the drum
+      radius (17° of wrap per body, where their chordal action leaves the raw peak
+      within issue 12's 3 %: +1.46 % against +4.71 % at 0.196 m on the 60 m start; about
+      2.7× the run's cost), then off the pitches as above (10.125 and 25.3 per pitch),
+      :func:`beltrs.layout.belt_element_length`; wrap contact on the drums
       (``belt.pulley_contact = "wrap"``: no chordal ripple on the held drum,
       docs/wrap-contact.md; for the rigid-body belt its wrap joints, docs/kubas.md) and on
       the rolls
@@ -413,8 +418,10 @@ def guo_wang_conveyor(
             a positive value is converted to the clockwise (negative) sense of this
             layout. Default ``StartCurve("harrison", speed=2, ramp=10)``.
         length: centre distance, m. Default 972 (shorter conveyors for quick studies).
-        element_length: element length, m, used as given. Default None: 0.196, chosen
-            off the idler pitches as above.
+        element_length: element length, m, used as given. Default None: 0.196 (node
+            belt), 0.1185 (rigid bodies), chosen as above. Rigid bodies longer than 0.3 ×
+            the drum radius (0.12 m) warn (:class:`beltrs.AccuracyWarning`: their raw peaks
+            carry the chordal excess), as do ``elements`` that make them so.
         elements: belt elements; overrides ``element_length`` (for
             :func:`beltrs.study.accuracy_cost`). Default None.
         material: kg per metre of belt on the carry strand. Default 55.6.
@@ -468,8 +475,16 @@ def guo_wang_conveyor(
     idlers += _idler_row(length, r, -r - roll, p["return_pitch"], rotating_mass=return_mass,
                          inertia=0.8 * return_mass * roll**2, contact_damping=1.5e4, **rolls)
     path = 2 * length + 2 * math.pi * r
-    if element_length is None:
-        element_length = element_length_off_pitches(0.2, [p["carry_pitch"], p["return_pitch"]])
+    rigid = formulation == "rigid_body"
+    if elements is not None:  # overrides element_length
+        if rigid:
+            check_rigid_body_length(path / elements, r, field=f"elements = {elements!r}, so the body length",
+                                    leave="elements")
+    elif element_length is None:  # the node belt's 0.196 m; the rigid belt's 0.1185 m (l <= 0.3 R)
+        element_length = belt_element_length(0.2, [p["carry_pitch"], p["return_pitch"]],
+                                             formulation=formulation, drum_radius=r)
+    elif rigid:
+        check_rigid_body_length(element_length, r)
     belt = Belt(
         axial_stiffness=p["axial_stiffness"],
         mass_per_length=p["belt_mass"],
