@@ -98,7 +98,8 @@ def net_force(runs, bare, f):
 # wandering quantity: the same Hann mean in windows ending 5, 6, ... 15 s reads -12.0 to
 # +4.6 % (either law; the loaded belt's T1 - T2 swings by 100-150 N below 1 Hz), so it can
 # move by several points with anything that shifts that swing's phase (docs/wrap-contact.md,
-# "The four tests it moved").
+# "The four tests it moved"). Session 13, stick-force friction with each body's arm
+# (docs/kubas.md): rigid -1.84 % (1369.8 N; bare T1 - T2 214.1 N), main edfc824 -1.63 %.
 @pytest.mark.parametrize("formulation", ["node_kelvin_voigt", "rigid_body"])
 def test_steady_running_matches_din_22101(runs, bare, formulation):
     d1, d2 = guo_wang_din(LENGTH).at_probes(10.0)
@@ -148,7 +149,9 @@ def test_start_peak_agrees_between_formulations(runs):
 # pitches, 0.095-0.115 m +1.11 … +1.54 %, 0.124 m +1.75 %, +2.5 % at 0.13-0.14 m,
 # +3.3 … +3.8 % at 0.148-0.168 m: the chord's a², not one crest's luck. Both together (lead,
 # merge): 0.1148 / 0.1185 / 0.1244 / 0.1297 m +1.76 / +1.71 / +1.45 / +1.33 %. Cost: about
-# 2.7x the 0.196 m bodies' element-steps. The node belt: +0.44 % (unchanged).
+# 2.7x the 0.196 m bodies' element-steps. The node belt: +0.44 % (unchanged). With
+# stick-force friction's arms (session 13, docs/kubas.md), at 0.196 m: +2.31 % (59.76 / 58.41
+# kN, raw at 1.40 s); 0.195 m +3.88 % (main edfc824 +3.91 %).
 @pytest.mark.parametrize("formulation", FORMULATIONS)
 def test_raw_peak_within_3_percent_of_the_peak_below_2_hz(runs, formulation):
     t1 = runs[formulation][1]["tension"][:, 0]
@@ -164,7 +167,8 @@ def test_the_tail_drum_is_not_swung_at_the_body_rate(runs, formulation):
     0.1185 m bodies of session 13, 0.0147 at 0.196 m), 0.0716 m/s before
     (swung at v/l = 10.2 Hz by the moment (l/2)(N_a - N_b) that acted on the belt alone,
     docs/kubas.md "The contact's moment on the drum"). 0.03 m/s: twice the rigid figure,
-    under half the old one."""
+    under half the old one. Session 13 (main edfc824): node 0.0082, rigid 0.0130 m/s; with
+    stick-force friction's arms 0.0134."""
     _, data = runs[formulation]
     t = data["time"]
     surface = data["pulley_speed"][:, 0] * R

@@ -1313,3 +1313,77 @@ fn the_slip_front_advances_at_the_kinetic_limit() {
     assert_eq!(f, vec![450.0, 499.0, 450.0]);
     assert!(after.is_empty());
 }
+
+#[test]
+fn bodies_with_their_own_arms_stick_at_their_lever_and_turn_the_pulley_with_their_arms() {
+    // Rigid bodies (`PulleyContacts::arm`, `lever`): a sticking body reaches the surface
+    // speed lever_k·ω' at the end of the step, a slipping one carries µk·N, and the pulley
+    // takes Σ arm_k·f_k, the moment the bodies receive. Random arms 0.8-1.2 R, levers the
+    // arm ± a wrap joint's slide, limits low enough that some contacts slip.
+    let mut rng = Rng(0x5eed_a4a5_0123_4567);
+    let mut slipped = 0;
+    for trial in 0..40 {
+        let n = 8;
+        let r = rng.uniform(0.3, 1.5);
+        let pulley = FrictionPulley {
+            radius: r,
+            inertia: rng.uniform(0.1, 30.0),
+            omega: rng.uniform(-10.0, 10.0),
+            center_velocity: V2::zeros(),
+            applied_torque: rng.uniform(-300.0, 300.0),
+            mu_static: if trial % 2 == 0 { 1e9 } else { 0.5 },
+            mu_kinetic: 0.4,
+            prescribed: None,
+        };
+        let dt = rng.uniform(1e-5, 5e-4);
+        let nodes = [1usize, 2, 3, 5, 6];
+        let mut contacts = PulleyContacts::default();
+        let a0 = rng.uniform(0.0, std::f64::consts::TAU);
+        for (k, &i) in nodes.iter().enumerate() {
+            contacts.node.push(i);
+            contacts.normal.push(unit(a0 + 0.4 * k as f64));
+            contacts.normal_force.push(rng.uniform(100.0, 2000.0));
+            contacts.penetration.push(1e-3);
+            let arm = r * rng.uniform(0.8, 1.2);
+            contacts.arm.push(arm);
+            contacts.lever.push(arm + r * rng.uniform(-0.05, 0.05));
+        }
+        let mass: Vec<f64> = (0..n).map(|_| rng.uniform(0.2, 15.0)).collect();
+        let v: Vec<V2> = (0..n).map(|_| rng.vec(4.0)).collect();
+        let before: Vec<V2> = (0..n).map(|_| rng.vec(800.0)).collect();
+        let mut force = before.clone();
+        let mut scratch = StickScratch::default();
+        let out =
+            pulley_stick_friction(&contacts, &pulley, &v, &mass, dt, &mut force, &mut scratch);
+        slipped += out.slipping;
+        let omega_new = pulley.omega + dt * (out.torque + pulley.applied_torque) / pulley.inertia;
+        let (mut moment, mut scale) = (0.0, 1.0);
+        let mut slipping = 0;
+        for (k, &i) in nodes.iter().enumerate() {
+            let t = tangent(contacts.normal[k]);
+            let f = -(force[i] - before[i]).dot(&t);
+            moment += contacts.arm[k] * f;
+            scale += (contacts.arm[k] * f).abs();
+            let kinetic = pulley.mu_kinetic * contacts.normal_force[k];
+            if (f.abs() - kinetic).abs() <= 1e-12 * kinetic {
+                slipping += 1;
+                continue;
+            }
+            assert!(f.abs() <= pulley.mu_static * contacts.normal_force[k]);
+            let v_new = v[i] + force[i] * (dt / mass[i]);
+            let vn_new = t.dot(&v_new) - contacts.lever[k] * omega_new;
+            let vscale = t.dot(&v[i]).abs()
+                + (contacts.lever[k] * pulley.omega).abs()
+                + dt * force[i].norm() / mass[i]
+                + contacts.lever[k].abs() * (omega_new - pulley.omega).abs();
+            assert!(
+                vn_new.abs() <= 1e-9 * vscale,
+                "trial {trial} contact {k}: relative speed after {vn_new:e} (scale {vscale:e})"
+            );
+        }
+        assert_eq!(slipping, out.slipping, "trial {trial}");
+        assert_close("torque", out.torque, moment, 1e-12, scale);
+    }
+    // It can fail: the slip branch was exercised.
+    assert!(slipped > 0);
+}

@@ -46,9 +46,10 @@ pub struct PulleyContacts {
     /// Per contact, the moment about the pulley's centre of a unit force along the
     /// friction's direction at the belt point, m: (x − c) × t, where the friction acts on
     /// the belt (rigid bodies resting on their ends: at the mass centre,
-    /// [`pulley_body_contact`]). Creep friction gives the pulley the friction's moment with
-    /// these arms (`friction::creep`), so that belt and pulley keep their angular momentum
-    /// (the stick-force solve takes the friction radius for all). The `lever` less a wrap
+    /// [`pulley_body_contact`]). Both friction laws give the pulley the friction's moment
+    /// with these arms (`friction::creep`, `friction::pulley_stick_friction`, whose stick
+    /// solve also couples each contact to the drum's angular acceleration through its
+    /// `lever`), so that belt and pulley keep their angular momentum. The `lever` less a wrap
     /// joint's slide (`belt::rigid::wrap_joint`), which is kinematic and no arm. Empty:
     /// the pulley's radius for every contact.
     pub arm: Vec<f64>,

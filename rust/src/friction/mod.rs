@@ -157,6 +157,9 @@ pub struct FrictionOutcome {
 /// f_i = m_i v_n,i/Δt + t_i·F_i − m_i R (T + R·A)/(I + R² M), where A and M sum
 /// m_j v_n,j/Δt + t_j·F_j and m_j over S and T is the applied torque plus the torque of the
 /// slipping nodes. The node receives −f_i t_i, the pulley +f_i t_i and torque R f_i.
+/// Rigid bodies resting on their ends have their own arms ([`PulleyContacts::lever`] for the
+/// surface's speed under the body, [`PulleyContacts::arm`] for the friction's moment), which
+/// take R's place contact by contact (see `release_slipping_arms`).
 /// A prescribed motion (brake, speed-controlled drive) is solved here too (see
 /// [`FrictionPulley::prescribed`]).
 #[allow(clippy::too_many_arguments)]
@@ -195,19 +198,28 @@ pub fn pulley_stick_friction(
         let alpha = prescribed.alpha(pulley.omega, dt);
         let mut tangential = 0.0;
         let mut slipped = 0;
+        // Per-contact arms (rigid bodies): the surface's acceleration at contact k is
+        // lever_k·α and its friction's moment arm_k·f_k; nodes: the radius for both.
+        let arms = !contacts.arm.is_empty();
+        let mut moment = 0.0;
         for k in 0..nc {
-            let (f, slips) = limit(
-                scratch.free[k] - mass[contacts.node[k]] * r * alpha,
-                scratch.limit[k],
-                contacts.normal_force[k],
-                pulley,
-            );
+            let m = mass[contacts.node[k]];
+            let stick = if arms {
+                scratch.free[k] - m * (lever(contacts, k, r) * alpha)
+            } else {
+                scratch.free[k] - m * r * alpha
+            };
+            let (f, slips) = limit(stick, scratch.limit[k], contacts.normal_force[k], pulley);
             scratch.force[k] = f;
             scratch.sticking[k] = !slips;
             slipped += usize::from(slips);
             tangential += f;
+            if arms {
+                moment += arm(contacts, k, r) * f;
+            }
         }
-        let needed = pulley.inertia * alpha - pulley.applied_torque - r * tangential;
+        let belt_torque = if arms { moment } else { r * tangential };
+        let needed = pulley.inertia * alpha - pulley.applied_torque - belt_torque;
         let (torque, holds) = prescribed.limit(needed);
         if holds {
             let mut out = apply(
@@ -225,7 +237,11 @@ pub fn pulley_stick_friction(
         scratch.sticking.iter_mut().for_each(|s| *s = true);
     }
     let known_torque = pulley.applied_torque + held.unwrap_or(0.0);
-    let slipping = release_slipping(contacts, pulley, mass, scratch, known_torque);
+    let slipping = if contacts.arm.is_empty() {
+        release_slipping(contacts, pulley, mass, scratch, known_torque)
+    } else {
+        release_slipping_arms(contacts, pulley, mass, scratch, known_torque)
+    };
     apply(
         contacts,
         scratch,
@@ -425,6 +441,77 @@ fn release_slipping(
     slipping
 }
 
+/// The surface speed per unit ω along contact `k`'s friction direction,
+/// [`PulleyContacts::lever`] (the radius `r` if empty), m.
+#[inline]
+fn lever(contacts: &PulleyContacts, k: usize, r: f64) -> f64 {
+    contacts.lever.get(k).copied().unwrap_or(r)
+}
+
+/// The moment about the pulley's centre of a unit friction force at contact `k`,
+/// [`PulleyContacts::arm`] (the radius `r` if empty), m.
+#[inline]
+fn arm(contacts: &PulleyContacts, k: usize, r: f64) -> f64 {
+    contacts.arm.get(k).copied().unwrap_or(r)
+}
+
+/// [`release_slipping`] for contacts with their own arms (rigid bodies resting on their
+/// ends, [`PulleyContacts::arm`]): the pulley's surface moves at lever_k·ω under contact k
+/// ([`PulleyContacts::lever`]) and its friction turns the pulley with arm_k·f_k, so a
+/// sticking contact's force is f_k = free_k − m_k·lever_k·α and
+/// α = (T + Σ_S arm_k·free_k) / (I + Σ_S m_k·arm_k·lever_k), T the known torque plus the
+/// slipping contacts' moments Σ arm_k·f_k. The pulley then takes exactly the moment the
+/// bodies receive: belt and pulley keep their angular momentum (as under creep friction).
+///
+/// With the levers unequal the excess per unit mass, (free_k ∓ µs·N_k)/m_k ∓ lever_k·α,
+/// orders the candidates differently at each α, so the sorted lists of [`release_slipping`]
+/// do not apply: the one-at-a-time rule itself, the worst violator (largest excess per unit
+/// mass at the current α; ties: lowest index) released each round, O(n_c·n_slip). A drum
+/// carries tens of bodies, not the thousands of nodes the lists are for.
+fn release_slipping_arms(
+    contacts: &PulleyContacts,
+    pulley: &FrictionPulley,
+    mass: &[f64],
+    scratch: &mut StickScratch,
+    known_torque: f64,
+) -> usize {
+    let nc = contacts.len();
+    let r = pulley.radius;
+    let (mut torque, mut slipping) = (known_torque, 0);
+    loop {
+        let (mut a_sum, mut m_sum) = (0.0, 0.0);
+        for k in 0..nc {
+            if scratch.sticking[k] {
+                let (a, m) = (arm(contacts, k, r), mass[contacts.node[k]]);
+                a_sum += a * scratch.free[k];
+                m_sum += m * a * lever(contacts, k, r);
+            }
+        }
+        let alpha = (torque + a_sum) / (pulley.inertia + m_sum);
+        let mut worst: Option<(usize, f64, f64)> = None;
+        for k in 0..nc {
+            if !scratch.sticking[k] {
+                continue;
+            }
+            let m = mass[contacts.node[k]];
+            let f = scratch.free[k] - m * (lever(contacts, k, r) * alpha);
+            scratch.force[k] = f;
+            let excess = (f.abs() - scratch.limit[k]) / m;
+            if excess > 0.0 && worst.is_none_or(|(_, e, _)| excess > e) {
+                worst = Some((k, excess, f.signum()));
+            }
+        }
+        let Some((k, _, sign)) = worst else {
+            return slipping;
+        };
+        let fk = sign * pulley.mu_kinetic * contacts.normal_force[k];
+        scratch.force[k] = fk;
+        scratch.sticking[k] = false;
+        torque += arm(contacts, k, r) * fk;
+        slipping += 1;
+    }
+}
+
 /// The sticking nodes' forces at the final α = `alpha`(A, M) of the slip loop, with the
 /// sums A and M over the sticking nodes taken afresh (no running subtraction left in them).
 fn finish(
@@ -547,7 +634,15 @@ fn apply(
         out.force += t * f;
         out.tangential += f;
     }
-    out.torque = radius * out.tangential;
+    // Rigid bodies: each friction's moment with its own arm, the moment the body receives
+    // (see [`release_slipping_arms`]); nodes: the radius, the sum as before to the bit.
+    out.torque = if contacts.arm.is_empty() {
+        radius * out.tangential
+    } else {
+        (0..contacts.len())
+            .map(|k| arm(contacts, k, radius) * scratch.force[k])
+            .sum()
+    };
     out
 }
 
