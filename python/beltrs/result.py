@@ -403,10 +403,11 @@ class Result:
         At each instant and pulley, the belt's contact arc is the longest run of nodes inside
         the pulley (closer to its centre than its radius, as the contact force counts them,
         or on its surface within :data:`ARC_TOLERANCE` of the radius, where the wrap contact
-        holds them; a single node off the surface inside an arc does not split it). The strand tensions
-        are those of the free elements next to the arc's ends, ``tight`` the larger,
-        ``slack`` the smaller, and the wrap angle ``wrap`` the turn from the incoming to the
-        outgoing strand's direction. Then
+        holds them; a single node off the surface inside an arc does not split it). The strands
+        are the elements one beyond those joining the arc's end nodes to the first free
+        nodes (those are chords across the tangent points, partly on the pulley); their
+        tensions give ``tight`` (the larger) and ``slack`` (the smaller), and the wrap angle
+        ``wrap`` is the turn from the incoming to the outgoing strand's direction. Then
 
             utilisation = (tight - slack) / (slack * (exp(mu * wrap) - 1)),
 
