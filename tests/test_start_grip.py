@@ -190,9 +190,10 @@ def test_capstan_reads_the_wrap_contacts_arc():
     inside the radius broke into runs of 2-4 nodes, the wrap read 0.8-1.45 rad and the
     utilisation 1.0-1.17 in steady running at T1/T2 = 1.5 (a slip that was not there). The
     300 m conveyor started running: the head drum's wrap within 0.3 rad of pi (the turn
-    between the free elements next to the arc's end nodes; measured 2.91-3.01), its tight and
-    slack sides DIN 22101's T1 and T2 within 3 % (measured 24.62 against 24.60 kN, 16.36
-    against 16.39 kN at the start; the run settles by some 1 kN in the first second), and the
+    between the strands; measured 2.91-3.01 while the capstan read the chords across the
+    tangent points as the strands, 3.136-3.138 since outaudit, session 13), its tight and
+    slack sides DIN 22101's T1 and T2 within 3 % (measured 24.59 against 24.60 kN, 16.39
+    against 16.39 kN at the start; the run settles by some 0.5 kN in the first 0.3 s), and the
     utilisation the capstan formula of them."""
     c = conveyor_300(start="running")
     res = beltrs.Simulation(c.scene()).run(0.2, record_interval=0.1)

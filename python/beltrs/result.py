@@ -403,10 +403,11 @@ class Result:
         At each instant and pulley, the belt's contact arc is the longest run of nodes inside
         the pulley (closer to its centre than its radius, as the contact force counts them,
         or on its surface within :data:`ARC_TOLERANCE` of the radius, where the wrap contact
-        holds them; a single node off the surface inside an arc does not split it). The strand tensions
-        are those of the free elements next to the arc's ends, ``tight`` the larger,
-        ``slack`` the smaller, and the wrap angle ``wrap`` the turn from the incoming to the
-        outgoing strand's direction. Then
+        holds them; a single node off the surface inside an arc does not split it). The strands
+        are the elements one beyond those joining the arc's end nodes to the first free
+        nodes (those are chords across the tangent points, partly on the pulley); their
+        tensions give ``tight`` (the larger) and ``slack`` (the smaller), and the wrap angle
+        ``wrap`` is the turn from the incoming to the outgoing strand's direction. Then
 
             utilisation = (tight - slack) / (slack * (exp(mu * wrap) - 1)),
 
@@ -456,10 +457,13 @@ class Result:
                 if arc is None:
                     continue
                 first, last = arc
-                enter, leave = (first - 1) % elements, last
+                # The strands: the elements just beyond the ones that join the arc to the
+                # first free node (those are chords across the tangent point, partly on the
+                # pulley: their tension and direction are neither strand's nor the arc's).
+                enter, leave = (first - 2) % elements, (last + 1) % elements
                 t_in, t_out = self.tension[k, enter], self.tension[k, leave]
-                d_in = x[k, first] - x[k, enter]
-                d_out = x[k, (last + 1) % elements] - x[k, last]
+                d_in = x[k, (enter + 1) % elements] - x[k, enter]
+                d_out = x[k, (leave + 1) % elements] - x[k, leave]
                 turn = np.arctan2(d_in[0] * d_out[1] - d_in[1] * d_out[0], d_in @ d_out)
                 tight[k, j], slack[k, j] = max(t_in, t_out), min(t_in, t_out)
                 wrap[k, j] = (sign[j] * turn) % (2 * np.pi)
