@@ -536,6 +536,25 @@ fn stick_force_brings_single_node_to_surface_speed() {
     }
 }
 
+/// Five contacts on an arc of a pulley, nodes 1, 2, 3, 5 and 6 of `n` (the others not in
+/// contact), random normal loads; then the `n` nodes' masses, velocities and forces before
+/// friction.
+#[allow(clippy::type_complexity)]
+fn five_on_an_arc(rng: &mut Rng, n: usize) -> (PulleyContacts, Vec<f64>, Vec<V2>, Vec<V2>) {
+    let mut contacts = PulleyContacts::default();
+    let a0 = rng.uniform(0.0, std::f64::consts::TAU);
+    for (k, i) in [1usize, 2, 3, 5, 6].into_iter().enumerate() {
+        contacts.node.push(i);
+        contacts.normal.push(unit(a0 + 0.4 * k as f64));
+        contacts.normal_force.push(rng.uniform(100.0, 2000.0));
+        contacts.penetration.push(1e-3);
+    }
+    let mass = (0..n).map(|_| rng.uniform(0.2, 15.0)).collect();
+    let v = (0..n).map(|_| rng.vec(4.0)).collect();
+    let before = (0..n).map(|_| rng.vec(800.0)).collect();
+    (contacts, mass, v, before)
+}
+
 #[test]
 fn stick_force_brings_all_sticking_nodes_to_surface_speed() {
     let mut rng = Rng(0xdead_beef_cafe_f00d);
@@ -557,24 +576,13 @@ fn stick_force_brings_all_sticking_nodes_to_surface_speed() {
         };
         let dt = rng.uniform(1e-5, 5e-4);
         // Five contacts on an arc, with nodes 0, 4, 8 not in contact (must be untouched).
-        let nodes = [1usize, 2, 3, 5, 6];
-        let mut contacts = PulleyContacts::default();
-        let a0 = rng.uniform(0.0, std::f64::consts::TAU);
-        for (k, &i) in nodes.iter().enumerate() {
-            contacts.node.push(i);
-            contacts.normal.push(unit(a0 + 0.4 * k as f64));
-            contacts.normal_force.push(rng.uniform(100.0, 2000.0));
-            contacts.penetration.push(1e-3);
-        }
-        let mass: Vec<f64> = (0..n).map(|_| rng.uniform(0.2, 15.0)).collect();
-        let v: Vec<V2> = (0..n).map(|_| rng.vec(4.0)).collect();
-        let before: Vec<V2> = (0..n).map(|_| rng.vec(800.0)).collect();
+        let (contacts, mass, v, before) = five_on_an_arc(&mut rng, n);
         let mut force = before.clone();
         let mut scratch = StickScratch::default();
         let out =
             pulley_stick_friction(&contacts, &pulley, &v, &mass, dt, &mut force, &mut scratch);
         assert_eq!(out.slipping, 0);
-        for k in 0..nodes.len() {
+        for k in 0..contacts.len() {
             let (vn_new, scale) =
                 relative_speed_after(&contacts, k, &pulley, &v, &mass, dt, &force, out.torque);
             // Same rounding argument as the single-node test.
@@ -589,7 +597,7 @@ fn stick_force_brings_all_sticking_nodes_to_surface_speed() {
         // Pulley torque and resultant are the sums of the contact forces.
         let mut sum_f = 0.0;
         let mut sum_fv = V2::zeros();
-        for (k, &i) in nodes.iter().enumerate() {
+        for (k, &i) in contacts.node.iter().enumerate() {
             let t = tangent(contacts.normal[k]);
             let f = -(force[i] - before[i]).dot(&t);
             sum_f += f;
@@ -1336,21 +1344,12 @@ fn bodies_with_their_own_arms_stick_at_their_lever_and_turn_the_pulley_with_thei
             prescribed: None,
         };
         let dt = rng.uniform(1e-5, 5e-4);
-        let nodes = [1usize, 2, 3, 5, 6];
-        let mut contacts = PulleyContacts::default();
-        let a0 = rng.uniform(0.0, std::f64::consts::TAU);
-        for (k, &i) in nodes.iter().enumerate() {
-            contacts.node.push(i);
-            contacts.normal.push(unit(a0 + 0.4 * k as f64));
-            contacts.normal_force.push(rng.uniform(100.0, 2000.0));
-            contacts.penetration.push(1e-3);
+        let (mut contacts, mass, v, before) = five_on_an_arc(&mut rng, n);
+        for _ in 0..contacts.len() {
             let arm = r * rng.uniform(0.8, 1.2);
             contacts.arm.push(arm);
             contacts.lever.push(arm + r * rng.uniform(-0.05, 0.05));
         }
-        let mass: Vec<f64> = (0..n).map(|_| rng.uniform(0.2, 15.0)).collect();
-        let v: Vec<V2> = (0..n).map(|_| rng.vec(4.0)).collect();
-        let before: Vec<V2> = (0..n).map(|_| rng.vec(800.0)).collect();
         let mut force = before.clone();
         let mut scratch = StickScratch::default();
         let out =
@@ -1359,7 +1358,7 @@ fn bodies_with_their_own_arms_stick_at_their_lever_and_turn_the_pulley_with_thei
         let omega_new = pulley.omega + dt * (out.torque + pulley.applied_torque) / pulley.inertia;
         let (mut moment, mut scale) = (0.0, 1.0);
         let mut slipping = 0;
-        for (k, &i) in nodes.iter().enumerate() {
+        for (k, &i) in contacts.node.iter().enumerate() {
             let t = tangent(contacts.normal[k]);
             let f = -(force[i] - before[i]).dot(&t);
             moment += contacts.arm[k] * f;
