@@ -306,13 +306,7 @@ fn release_slipping(
 ) -> usize {
     let nc = contacts.len();
     let r = pulley.radius;
-    let (mut a_sum, mut m_sum) = (0.0, 0.0);
-    for k in 0..nc {
-        if scratch.sticking[k] {
-            a_sum += scratch.free[k];
-            m_sum += mass[contacts.node[k]];
-        }
-    }
+    let (mut a_sum, mut m_sum) = sticking_sums(contacts, mass, scratch, |_, f, m| (f, m));
     let alpha = |torque: f64, a_sum: f64, m_sum: f64| {
         (torque + r * a_sum) / (pulley.inertia + r * r * m_sum)
     };
@@ -479,14 +473,10 @@ fn release_slipping_arms(
     let r = pulley.radius;
     let (mut torque, mut slipping) = (known_torque, 0);
     loop {
-        let (mut a_sum, mut m_sum) = (0.0, 0.0);
-        for k in 0..nc {
-            if scratch.sticking[k] {
-                let (a, m) = (arm(contacts, k, r), mass[contacts.node[k]]);
-                a_sum += a * scratch.free[k];
-                m_sum += m * a * lever(contacts, k, r);
-            }
-        }
+        let (a_sum, m_sum) = sticking_sums(contacts, mass, scratch, |k, f, m| {
+            let a = arm(contacts, k, r);
+            (a * f, m * a * lever(contacts, k, r))
+        });
         let alpha = (torque + a_sum) / (pulley.inertia + m_sum);
         let mut worst: Option<(usize, f64, f64)> = None;
         for k in 0..nc {
@@ -512,6 +502,26 @@ fn release_slipping_arms(
     }
 }
 
+/// Σ over the sticking contacts of `term(k, free_k, m_k)`, both parts: the numerator and
+/// the denominator sums of the pulley's α (nodes: Σ free, Σ m; rigid bodies: with their
+/// arms and levers).
+fn sticking_sums(
+    contacts: &PulleyContacts,
+    mass: &[f64],
+    scratch: &StickScratch,
+    term: impl Fn(usize, f64, f64) -> (f64, f64),
+) -> (f64, f64) {
+    let (mut a_sum, mut m_sum) = (0.0, 0.0);
+    for k in 0..contacts.len() {
+        if scratch.sticking[k] {
+            let (a, m) = term(k, scratch.free[k], mass[contacts.node[k]]);
+            a_sum += a;
+            m_sum += m;
+        }
+    }
+    (a_sum, m_sum)
+}
+
 /// The sticking nodes' forces at the final α = `alpha`(A, M) of the slip loop, with the
 /// sums A and M over the sticking nodes taken afresh (no running subtraction left in them).
 fn finish(
@@ -521,13 +531,7 @@ fn finish(
     r: f64,
     alpha: impl Fn(f64, f64) -> f64,
 ) {
-    let (mut a_sum, mut m_sum) = (0.0, 0.0);
-    for k in 0..contacts.len() {
-        if scratch.sticking[k] {
-            a_sum += scratch.free[k];
-            m_sum += mass[contacts.node[k]];
-        }
-    }
+    let (a_sum, m_sum) = sticking_sums(contacts, mass, scratch, |_, f, m| (f, m));
     let ra = r * alpha(a_sum, m_sum);
     for k in 0..contacts.len() {
         if scratch.sticking[k] {
