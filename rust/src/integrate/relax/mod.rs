@@ -165,6 +165,9 @@ impl Simulation {
                 "must be > 0",
             ));
         }
+        if !options.friction {
+            self.check_downhill_pull()?;
+        }
         let ladder = self.contact_continuation();
         if ladder.is_empty() {
             return self.relax(options, 1.0);
@@ -189,6 +192,48 @@ impl Simulation {
             }
         }
         Ok(total)
+    }
+
+    /// Without belt friction nothing holds a closed node belt from running round its
+    /// pulleys, so it has a static equilibrium only if gravity has no net pull along it.
+    /// The belt's own weight has none (the loop is closed); bulk material on an incline or
+    /// decline has m'_L·g·Δh/L per metre: the belt would run downhill for ever (a decline
+    /// conveyor's carry strand, `docs/statics.md`). Refuse it up front: relative to the
+    /// belt's weight, a pull above 1e-3 (a 40 m conveyor falling 6 m at 400 t/h: 0.08).
+    /// With friction on the drums turn freely (drives and brakes are off), so friction does
+    /// not hold it either; that case is not refused (it slows the run-away: residual 8e-4
+    /// after 10⁶ steps on that conveyor) and left open.
+    fn check_downhill_pull(&self) -> BeltResult<()> {
+        let m = &self.model;
+        let s = &self.state;
+        let n = s.position.len();
+        if m.ends.is_some() || m.is_rigid() || n < 3 {
+            return Ok(());
+        }
+        let (mut pull, mut weight) = (0.0, 0.0);
+        for i in 0..n {
+            let t = s.position[(i + 1) % n] - s.position[(i + n - 1) % n];
+            let len = t.norm();
+            let w = s.node_mass[i] * m.gravity;
+            weight += w;
+            if len > 0.0 {
+                pull += -w * t.y / len;
+            }
+        }
+        if weight > 0.0 && pull.abs() > 1e-3 * weight {
+            return Err(BeltError::invalid(
+                "friction",
+                false,
+                format!(
+                    "gravity pulls the belt round its pulleys with {:.4e} N (bulk material on \
+                     an incline or decline) and without belt friction nothing holds it: no \
+                     static equilibrium; start from the design state (no stabilise(): \
+                     docs/design-start.md)",
+                    pull.abs()
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// One relaxation with every contact stiffness scaled by `contact_scale`.
