@@ -67,6 +67,18 @@ impl PulleyContacts {
         self.lever.clear();
         self.arm.clear();
     }
+    /// The surface speed per unit ω along contact `k`'s friction direction, m:
+    /// [`Self::lever`], or the pulley's radius `radius` when empty (nodes).
+    #[inline]
+    pub fn lever_at(&self, k: usize, radius: f64) -> f64 {
+        self.lever.get(k).copied().unwrap_or(radius)
+    }
+    /// The moment about the pulley's centre of a unit friction force at contact `k`, m:
+    /// [`Self::arm`], or the pulley's radius `radius` when empty (nodes).
+    #[inline]
+    pub fn arm_at(&self, k: usize, radius: f64) -> f64 {
+        self.arm.get(k).copied().unwrap_or(radius)
+    }
     /// Number of nodes in contact.
     pub fn len(&self) -> usize {
         self.node.len()

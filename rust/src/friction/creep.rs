@@ -331,7 +331,7 @@ pub fn pulley_creep_friction(
         let i = contacts.node[k];
         let t = perp(contacts.normal[k]);
         let normal = contacts.normal_force[k];
-        let lever = contacts.lever.get(k).copied().unwrap_or(r);
+        let lever = contacts.lever_at(k, r);
         let speed = lever * pulley.omega + t.dot(&pulley.center_velocity) - t.dot(&v[i]);
         let idx = i * at.stride + at.column;
         let creep = memory[idx];
@@ -362,7 +362,7 @@ pub fn pulley_creep_friction(
         // On the pulley: −f along t, with the moment the belt point receives.
         out.force -= t * f;
         out.tangential -= f;
-        moment -= contacts.arm.get(k).copied().unwrap_or(r) * f;
+        moment -= contacts.arm_at(k, r) * f;
         out.slipping += usize::from(sliding);
         if let Some(list) = per_contact.as_deref_mut() {
             list.push(-f);

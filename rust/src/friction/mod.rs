@@ -180,7 +180,7 @@ pub fn pulley_stick_friction(
     for k in 0..nc {
         let i = contacts.node[k];
         let t = perp(contacts.normal[k]);
-        let lever = contacts.lever.get(k).copied().unwrap_or(r);
+        let lever = contacts.lever_at(k, r);
         let vn = t.dot(&(v[i] - pulley.center_velocity)) - lever * pulley.omega;
         scratch.free.push(mass[i] * vn / dt + t.dot(&force[i]));
         scratch.sticking.push(true);
@@ -205,7 +205,7 @@ pub fn pulley_stick_friction(
         for k in 0..nc {
             let m = mass[contacts.node[k]];
             let stick = if arms {
-                scratch.free[k] - m * (lever(contacts, k, r) * alpha)
+                scratch.free[k] - m * (contacts.lever_at(k, r) * alpha)
             } else {
                 scratch.free[k] - m * r * alpha
             };
@@ -215,7 +215,7 @@ pub fn pulley_stick_friction(
             slipped += usize::from(slips);
             tangential += f;
             if arms {
-                moment += arm(contacts, k, r) * f;
+                moment += contacts.arm_at(k, r) * f;
             }
         }
         let belt_torque = if arms { moment } else { r * tangential };
@@ -435,20 +435,6 @@ fn release_slipping(
     slipping
 }
 
-/// The surface speed per unit ω along contact `k`'s friction direction,
-/// [`PulleyContacts::lever`] (the radius `r` if empty), m.
-#[inline]
-fn lever(contacts: &PulleyContacts, k: usize, r: f64) -> f64 {
-    contacts.lever.get(k).copied().unwrap_or(r)
-}
-
-/// The moment about the pulley's centre of a unit friction force at contact `k`,
-/// [`PulleyContacts::arm`] (the radius `r` if empty), m.
-#[inline]
-fn arm(contacts: &PulleyContacts, k: usize, r: f64) -> f64 {
-    contacts.arm.get(k).copied().unwrap_or(r)
-}
-
 /// [`release_slipping`] for contacts with their own arms (rigid bodies resting on their
 /// ends, [`PulleyContacts::arm`]): the pulley's surface moves at lever_k·ω under contact k
 /// ([`PulleyContacts::lever`]) and its friction turns the pulley with arm_k·f_k, so a
@@ -474,8 +460,8 @@ fn release_slipping_arms(
     let (mut torque, mut slipping) = (known_torque, 0);
     loop {
         let (a_sum, m_sum) = sticking_sums(contacts, mass, scratch, |k, f, m| {
-            let a = arm(contacts, k, r);
-            (a * f, m * a * lever(contacts, k, r))
+            let a = contacts.arm_at(k, r);
+            (a * f, m * a * contacts.lever_at(k, r))
         });
         let alpha = (torque + a_sum) / (pulley.inertia + m_sum);
         let mut worst: Option<(usize, f64, f64)> = None;
@@ -484,7 +470,7 @@ fn release_slipping_arms(
                 continue;
             }
             let m = mass[contacts.node[k]];
-            let f = scratch.free[k] - m * (lever(contacts, k, r) * alpha);
+            let f = scratch.free[k] - m * (contacts.lever_at(k, r) * alpha);
             scratch.force[k] = f;
             let excess = (f.abs() - scratch.limit[k]) / m;
             if excess > 0.0 && worst.is_none_or(|(_, e, _)| excess > e) {
@@ -497,7 +483,7 @@ fn release_slipping_arms(
         let fk = sign * pulley.mu_kinetic * contacts.normal_force[k];
         scratch.force[k] = fk;
         scratch.sticking[k] = false;
-        torque += arm(contacts, k, r) * fk;
+        torque += contacts.arm_at(k, r) * fk;
         slipping += 1;
     }
 }
@@ -644,7 +630,7 @@ fn apply(
         radius * out.tangential
     } else {
         (0..contacts.len())
-            .map(|k| arm(contacts, k, radius) * scratch.force[k])
+            .map(|k| contacts.arm_at(k, radius) * scratch.force[k])
             .sum()
     };
     out
