@@ -237,3 +237,12 @@ def test_takeup_on_the_drive_drum_halves_the_start_force_by_hand():
     assert r.tight[k] == pytest.approx(force / 2, rel=0.01)
     assert -r.slack[k] == pytest.approx(force / 2, rel=0.01)
     assert 10e3 + r.takeup_for(GRIP) == pytest.approx(need, rel=0.01)
+
+
+def test_bad_start_grip_arguments_are_scene_errors_by_name():
+    c = conveyor_300(ramp=10.0)
+    for bad, rule in (("x", "expected a number"), (-5.0, "must be > 0"), (float("nan"), "must be finite")):
+        with pytest.raises(beltrs.SceneError, match=f"takeup_tension = .*{rule}"):
+            c.start_grip(bad)
+    with pytest.raises(beltrs.SceneError, match="start_dynamics = 'yes': must be True or False"):
+        c.takeup_tension("yes")

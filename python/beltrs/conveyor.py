@@ -770,6 +770,8 @@ class Conveyor:
 
         rounded up to the next kN.
         """
+        if not isinstance(start_dynamics, (bool, np.bool_)):
+            raise SceneError(f"start_dynamics = {start_dynamics!r}: must be True or False")
         if self.takeup.tension is not None:
             return float(self.takeup.tension)
         base = 10e3  # any level: tensions are linear in it
@@ -830,7 +832,8 @@ class Conveyor:
         if len(self.drives) != 1 or self.drives[0].motor is not None or self.drives[0].follow is not None:
             return None
         d = self.drives[0]
-        t_up = self.takeup_tension() if takeup_tension is None else float(takeup_tension)
+        t_up = self.takeup_tension() if takeup_tension is None else \
+            float(check("takeup_tension", takeup_tension, positive=True, unit="N"))
         g, r, mg = self.gravity, self.radius, self.belt_mass
         length = self.carry_profile.length
         discharge = length if self.discharge is None else float(self.discharge)
