@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 from dataclasses import replace
 import json
+import math
 import pathlib
 import platform
 import time
@@ -80,6 +81,19 @@ def probe_chunks(sim: beltrs.Simulation, probes: list[tuple[float, float]], dura
     return {k: np.concatenate([q[k] for q in parts]) for k in parts[0]}
 
 
+def element_length_arg(text: str) -> float | None:
+    """``--element-length``: a length in m, or "builder" (None: the builder's rule)."""
+    if text == "builder":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: a length in m or 'builder'") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite length > 0 m")
+    return value
+
+
 def start(shape: str, ramp: float, prestart: float, length: float, settle: float,
           progress: Callable[[dict[str, Any]], None] | None = None, contact: str = "nodes",
           control: str = "ideal", loss: tuple[float, float] | None = None,
@@ -124,7 +138,8 @@ def start(shape: str, ramp: float, prestart: float, length: float, settle: float
         run.update(nodes=sim.nodes, dt=sim.dt, stabilise_steps=rep["steps"], stabilise_wall=t1 - t0,
                    run_wall=time.perf_counter() - t1, duration=duration,
                    pulley_contact=scene.belt.pulley_contact, idler_contact=scene.belt.idler_contact,
-                   element_length=scene_kw.get("element_length", 0.2), control=control,
+                   element_length=scene_kw.get("element_length") or sim.path_length / sim.elements,
+                   control=control,
                    loss_factor=scene.belt.loss_factor, loss_frequency=scene.belt.loss_frequency,
                    creep_ramp=curve.creep_ramp)
         return run
@@ -238,8 +253,10 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--section-from", metavar="JSON", help="with --formulations: write the section from these "
                     "comma-separated case_g_formulations.json files (runs split over processes) instead of running")
     ap.add_argument("--load", default="", help="with --formulations: the machine's load, for the page")
-    ap.add_argument("--element-length", type=float, default=0.2,
-                    help="with --formulations: belt element (body) length, m (guo_wang_conveyor's default 0.2); "
+    ap.add_argument("--element-length", type=element_length_arg, default=0.2,
+                    help="with --formulations: belt element (body) length, m, or 'builder' for "
+                    "guo_wang_conveyor's rule (beltrs.layout.belt_element_length: 0.196 m node elements, "
+                    "0.1185 m rigid bodies on case G's drums); default 0.2, the length of the page's tables; "
                     "the chordal ripple of the rigid bodies on the drums scales as its square")
     ap.add_argument("--pulley-contact", choices=("nodes", "builder"), default="nodes",
                     help="with --formulations: 'nodes' pins nodal pulley contact (as the tables above it); "
@@ -423,7 +440,7 @@ FORMULATION_NAMES = {"node_kelvin_voigt": "node", "rigid_body": "rigid body"}
 
 def formulation_study(formulations: list[str], curves: list[str], ramps: list[float], length: float,
                       settle: float, out: pathlib.Path, prestarts: tuple[float, ...] = (0.0,),
-                      contact: str = "nodes", element_length: float = 0.2,
+                      contact: str = "nodes", element_length: float | None = 0.2,
                       control: str = "ideal", loss: tuple[float, float] | None = None,
                       creep_ramp: float | None = None) -> list[dict[str, Any]]:
     """Each pre-start, ramp and curve with each formulation, in that order; prints each run
@@ -574,8 +591,10 @@ def coverage(runs: list[dict[str, Any]], length: float) -> str:
 
 
 def write_section(path: pathlib.Path, section: str) -> None:
-    """Put ``section`` in place of the old one in ``path`` (or at its end)."""
-    text = path.read_text(encoding="utf-8")
+    """Put ``section`` in place of the old one in ``path`` (or at its end); a ``path`` that
+    does not exist yet (an ``--out`` other than docs/) starts from the repository's page."""
+    source = path if path.exists() else ROOT / "docs" / "case-g.md"
+    text = source.read_text(encoding="utf-8")
     if BEGIN in text:
         text = text[:text.index(BEGIN)] + section + text[text.index(END) + len(END):]
     else:

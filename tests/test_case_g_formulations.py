@@ -255,10 +255,11 @@ def test_rigid_bodies_are_chosen_from_the_drum_and_longer_ones_warn():
         Conveyor(formulation="rigid_body", element_length=0.1).scene()
 
 
-def test_bench_section_names_each_runs_contact():
+def test_bench_section_names_each_runs_contact(tmp_path):
     """benches/case_g.py --formulations: a run at the builder's contact (--pulley-contact
     builder) or with other elements is named so in the page's table; the old runs (no
     contact recorded) and the nodal pinning read as before."""
+    import argparse
     import importlib.util
     import pathlib
 
@@ -277,8 +278,15 @@ def test_bench_section_names_each_runs_contact():
     text = bench.formulations_section([run, wrap, rigid], 972.0, 60.0, "test")
     assert "unless the belt column" in text
     assert "| node (drums wrap, rolls wrap) |" in text
+    # --element-length builder (None): the builder's rule, and the run records the length it
+    # gave (the node belt's 0.196 m, moved off the idler pitches by at most a few %)
+    assert bench.element_length_arg("builder") is None and bench.element_length_arg("0.1185") == 0.1185
+    for bad in ("x", "0", "-1", "nan"):
+        with pytest.raises(argparse.ArgumentTypeError, match="length"):
+            bench.element_length_arg(bad)
     run = bench.start("harrison", 0.5, 0.5, LENGTH, 0.0, contact="builder", control="vfd",
-                      loss=(0.1, 0.5), creep_ramp=0.5, element_length=0.196)
+                      loss=(0.1, 0.5), creep_ramp=0.5, element_length=None)
+    assert run["element_length"] == pytest.approx(0.196, rel=0.03)
     assert (run["loss_factor"], run["loss_frequency"], run["creep_ramp"]) == (0.1, 0.5, 0.5)
     assert "| rigid body (0.1 m elements) |" in text
     # --loss-factor and --creep-ramp (session 12): a viscoelastic belt and a pre-start with a
@@ -290,3 +298,8 @@ def test_bench_section_names_each_runs_contact():
     assert "| node (drums wrap, rolls wrap) |" in text
     with pytest.raises(ValueError, match="contact must be"):
         bench.start("harrison", 1.0, 0.0, LENGTH, 0.0, contact="wrap")
+    # an --out without a case-g.md of its own starts from the repository's page
+    page = tmp_path / "case-g.md"
+    bench.write_section(page, text)
+    written = page.read_text(encoding="utf-8")
+    assert written.startswith("# ") and written.count(bench.BEGIN) == 1 and "tan δ 0.1 at 0.5 Hz" in written
