@@ -240,9 +240,11 @@ def test_steady_running_agrees_with_din_22101():
     # Statics at the same places: the carry probe L - 10 m from the tail along the carry
     # strand, the return probe 10 m past the head.
     d1, d2 = p.along(L - 10.0), p.along(L + 10.0)
-    # 3 %: the issue's agreement target. Measured +1.9 % (T1) and -0.6 % (T2): T1 - T2
-    # exceeds DIN by ~0.35 kN, the node model's own loss on the drums (docs/loads.md,
-    # ~0.25 kN for this length in tests/test_case_g.py before pulley contact damping).
+    # 3 %: the issue's agreement target. Measured (session 14, main 5e1a801) +1.13 % (T1)
+    # and -0.03 % (T2) (+1.9 / -0.6 % in session 8). T1 - T2 exceeds the statics' by 205 N
+    # here: this 4 s window 2-6 s after the ramp still carries the loop's 0.5 Hz ringing
+    # after the start; averaged over whole periods of it the drive's pull is within 11 N
+    # (100 m) to 58 N (300 m) of DIN's F_U (test_steady_drive_pull_agrees_with_din_22101).
     assert t1 == pytest.approx(d1, rel=0.03)
     assert t2 == pytest.approx(d2, rel=0.03)
     drum = -data["pulley_speed"][:, sim.scene.pulley_index("head")] * r
