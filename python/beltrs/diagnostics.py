@@ -316,10 +316,10 @@ def check_roll_wrap_speed(sim: "Simulation") -> None:
         f"belt.idler_contact = \"wrap\" at a belt speed of {speed:.3g} m/s: the rolls' wrap contact is verified "
         f"at 2-{ROLL_WRAP_VERIFIED_SPEED:g} m/s only. Above it the lumped belt's nodes unload the lightest rolls "
         f"as they pass (the 50 m builder conveyor: 0.02 % of the roll samples at 9 m/s, 0.25 % at 10, 0.9 % at "
-        f"12, 2.1 % at 15; the first roll past the tail drum up to 44 % of its samples at 12 m/s), so roll "
-        f"forces and the drive torque's content at the node-passing frequency are not to be trusted there; "
-        f"tensions and the mean drive pull still hold (docs/wrap-contact.md, \"Session 14: roll wrap above "
-        f"8 m/s\"). The segment contact (belt.idler_contact = \"segment\") is worse at speed.",
+        f"12, 2.1 % at 15; the first roll past the tail drum up to 44 % of its samples at 12 m/s), so the roll "
+        f"forces are not to be trusted there; the tensions, the mean drive pull and the drive torque above 2 Hz "
+        f"still read as at 8 m/s (docs/wrap-contact.md, \"Session 14: roll wrap above 8 m/s\"). The segment "
+        f"contact (belt.idler_contact = \"segment\") is worse at speed.",
     )
 
 
