@@ -14,8 +14,9 @@ Categories (each a subclass of :class:`BeltrsWarning`, itself a ``UserWarning``)
   (the direction its loads carry material, loading point to discharge point).
 - :class:`IdlerContactWarning`: an idler is so far from the belt that it never touches it.
 - :class:`AccuracyWarning`: the scene relies on a default setting that is known to be
-  inaccurate for a scene of its kind, or a builder is given rigid bodies longer than its
-  rule (0.3 × the drum radius).
+  inaccurate for a scene of its kind, a builder is given rigid bodies longer than its
+  rule (0.3 × the drum radius), or the idler rolls' wrap contact runs above the speeds it
+  is verified at (:data:`ROLL_WRAP_VERIFIED_SPEED`).
 
 The checks are cheap (one force evaluation, or geometry of the compiled model); none of
 them changes a result.
@@ -44,6 +45,7 @@ __all__ = [
     "NotRelaxedWarning",
     "IDLER_GAP_LIMIT",
     "RELAXED_RESIDUAL_LIMIT",
+    "ROLL_WRAP_VERIFIED_SPEED",
 ]
 
 
@@ -60,9 +62,10 @@ class IdlerContactWarning(BeltrsWarning):
 
 
 class AccuracyWarning(BeltrsWarning):
-    """A default setting is known to be inaccurate for this scene, or (from the builders)
-    a rigid-body belt's explicit body length is longer than their rule
-    (:func:`beltrs.layout.check_rigid_body_length`)."""
+    """A default setting is known to be inaccurate for this scene, (from the builders) a
+    rigid-body belt's explicit body length is longer than their rule
+    (:func:`beltrs.layout.check_rigid_body_length`), or the rolls' wrap contact runs above
+    its verified speed (:func:`check_roll_wrap_speed`)."""
 
 
 #: Largest out-of-balance nodal force, as a fraction of the largest of (belt tension,
@@ -79,6 +82,16 @@ RELAXED_RESIDUAL_LIMIT = 1e-2
 #: several times that, so an idler this far away is a placement mistake (a sign or a radius
 #: in a coordinate), not sag.
 IDLER_GAP_LIMIT = 0.1
+
+#: Largest belt speed, m/s, at which the idler rolls' wrap contact (``belt.idler_contact =
+#: "wrap"``, the builders' default for the node belt) is verified: no roll unloads as the
+#: nodes pass, on the level 50 m builder conveyor at 2, 3, 4, 5, 6 and 8 m/s
+#: (tests/test_roll_wrap.py; docs/wrap-contact.md, "Session 14: roll wrap above 8 m/s").
+#: Above it the lightest rolls unload at the node-passing rate
+#: (``python benches/roll_wrap_speed.py --length 50 --speeds 8,9,10,12,15``): 0.02 % of the
+#: (roll, sample) pairs at 9 m/s, 0.25 % at 10, 0.9 % at 12, 2.1 % at 15 (the first roll past
+#: the tail drum in up to 44 % of its samples at 12 m/s).
+ROLL_WRAP_VERIFIED_SPEED = 8.0
 
 #: Element arc on a pulley (rad) below which raw tension peaks of a running belt are within
 #: about 5 % of their low-passed value (case G, docs/accuracy.md: 7 degrees).
@@ -280,7 +293,38 @@ def check_defaults(sim: "Simulation") -> None:
     )
 
 
+def check_roll_wrap_speed(sim: "Simulation") -> None:
+    """Warn (:class:`AccuracyWarning`) when the idler rolls' wrap contact runs above
+    :data:`ROLL_WRAP_VERIFIED_SPEED`: the scene's belt speed (the one the contact sizes its
+    circles for: the design start's speed, the speed-controlled drives' curve and creep
+    speeds, the direct-on-line motors' no-load belt speeds) is above the speeds at which no
+    roll unloads as the nodes pass. Warns once per speed (a ``set_scene`` to another speed
+    warns again)."""
+    scene = sim.scene
+    if scene.belt.idler_contact != "wrap" or not scene.idlers or not scene.gravity > 0:
+        return
+    from . import _beltrs
+
+    speed = float(_beltrs.roll_wrap_speed(scene.to_dict()))
+    if not speed > ROLL_WRAP_VERIFIED_SPEED * (1 + 1e-9):
+        return
+    if getattr(sim, "_roll_wrap_speed_warned", None) == speed:
+        return
+    sim._roll_wrap_speed_warned = speed  # type: ignore[attr-defined]
+    _warn(
+        AccuracyWarning,
+        f"belt.idler_contact = \"wrap\" at a belt speed of {speed:.3g} m/s: the rolls' wrap contact is verified "
+        f"at 2-{ROLL_WRAP_VERIFIED_SPEED:g} m/s only. Above it the lumped belt's nodes unload the lightest rolls "
+        f"as they pass (the 50 m builder conveyor: 0.02 % of the roll samples at 9 m/s, 0.25 % at 10, 0.9 % at "
+        f"12, 2.1 % at 15; the first roll past the tail drum up to 44 % of its samples at 12 m/s), so the roll "
+        f"forces are not to be trusted there; the tensions, the mean drive pull and the drive torque above 2 Hz "
+        f"still read as at 8 m/s (docs/wrap-contact.md, \"Session 14: roll wrap above 8 m/s\"). The segment "
+        f"contact (belt.idler_contact = \"segment\") is worse at speed.",
+    )
+
+
 def check_scene(sim: "Simulation") -> None:
     """The checks that need only the compiled scene (run when a Simulation is built)."""
     check_drive_directions(sim)
     check_defaults(sim)
+    check_roll_wrap_speed(sim)

@@ -764,6 +764,7 @@ class Simulation:
         self.scene = scene
         warn_scene(scene)
         diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
+        diagnostics.check_roll_wrap_speed(self)  # e.g. a faster starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         """The index of ``pulley`` (an index in [0, P) or a name), else a SceneError. A

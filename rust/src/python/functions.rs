@@ -33,6 +33,18 @@ pub(super) fn check_scene(scene: &Bound<'_, PyAny>) -> PyResult<()> {
     guarded(|| scene::scene_from_py(scene).map(|_| ()).map_err(to_py))
 }
 
+/// The belt speed (m/s) the idler rolls' wrap contact sizes its circles for, in a scene
+/// given in dict form (`contact::roll_wrap::scene_speed`: the design start's speed, each
+/// speed-controlled drive's curve and creep speeds, each direct-on-line motor's no-load belt
+/// speed; 0 if none gives one). Raises `SceneError` for a scene that does not read.
+#[pyfunction]
+pub(super) fn roll_wrap_speed(scene: &Bound<'_, PyAny>) -> PyResult<f64> {
+    guarded(|| {
+        let scene = scene::scene_from_py(scene).map_err(to_py)?;
+        Ok(crate::contact::roll_wrap::scene_speed(&scene))
+    })
+}
+
 /// Check `value` as the scene table `table` (`"start_curve"`, `"pulley"`, ...), naming paths
 /// from `path`; raises `SceneError`.
 #[pyfunction]

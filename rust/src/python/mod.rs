@@ -20,7 +20,8 @@ use call::{
     DivergenceError, SceneError, TimeStepError,
 };
 use functions::{
-    check_scene, check_scene_table, scene_defaults, start_curve_eval, unknown_key_rule,
+    check_scene, check_scene_table, roll_wrap_speed, scene_defaults, start_curve_eval,
+    unknown_key_rule,
 };
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -635,6 +636,7 @@ fn _beltrs(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::case_k_scene, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene_table, m)?)?;
     m.add_function(wrap_pyfunction!(unknown_key_rule, m)?)?;
+    m.add_function(wrap_pyfunction!(roll_wrap_speed, m)?)?;
     m.add("BeltrsError", m.py().get_type::<BeltrsError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("TimeStepError", m.py().get_type::<TimeStepError>())?;
