@@ -28,7 +28,7 @@ import math
 import os
 import sys
 import warnings
-from typing import TYPE_CHECKING, Iterator
+from typing import TYPE_CHECKING, Iterator, Optional
 
 import numpy as np
 
@@ -293,19 +293,20 @@ def check_defaults(sim: "Simulation") -> None:
     )
 
 
-def check_roll_wrap_speed(sim: "Simulation") -> None:
+def check_roll_wrap_speed(sim: "Simulation", scene_dict: Optional[dict] = None) -> None:
     """Warn (:class:`AccuracyWarning`) when the idler rolls' wrap contact runs above
     :data:`ROLL_WRAP_VERIFIED_SPEED`: the scene's belt speed (the one the contact sizes its
     circles for: the design start's speed, the speed-controlled drives' curve and creep
     speeds, the direct-on-line motors' no-load belt speeds) is above the speeds at which no
     roll unloads as the nodes pass. Warns once per speed (a ``set_scene`` to another speed
-    warns again)."""
+    warns again). ``scene_dict``: ``sim.scene.to_dict()`` if the caller has it at hand (it
+    costs about a tenth of building a 1 km conveyor's Simulation)."""
     scene = sim.scene
     if scene.belt.idler_contact != "wrap" or not scene.idlers or not scene.gravity > 0:
         return
     from . import _beltrs
 
-    speed = float(_beltrs.roll_wrap_speed(scene.to_dict()))
+    speed = float(_beltrs.roll_wrap_speed(scene.to_dict() if scene_dict is None else scene_dict))
     if not speed > ROLL_WRAP_VERIFIED_SPEED * (1 + 1e-9):
         return
     if getattr(sim, "_roll_wrap_speed_warned", None) == speed:
@@ -323,8 +324,9 @@ def check_roll_wrap_speed(sim: "Simulation") -> None:
     )
 
 
-def check_scene(sim: "Simulation") -> None:
-    """The checks that need only the compiled scene (run when a Simulation is built)."""
+def check_scene(sim: "Simulation", scene_dict: Optional[dict] = None) -> None:
+    """The checks that need only the compiled scene (run when a Simulation is built;
+    ``scene_dict``: the scene's ``to_dict()``, if at hand)."""
     check_drive_directions(sim)
     check_defaults(sim)
-    check_roll_wrap_speed(sim)
+    check_roll_wrap_speed(sim, scene_dict)

@@ -162,14 +162,15 @@ class Simulation:
         if not isinstance(scene, Scene):
             raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene")
         self.scene = scene
-        self._core = _beltrs.Simulation(scene.to_dict())
+        scene_dict = scene.to_dict()
+        self._core = _beltrs.Simulation(scene_dict)
         self.last_result: Optional[Result] = None
         # Still at the initial placement (never relaxed nor run): the first run warns if it is
         # far from equilibrium. Not so a design state (scene.initial, docs/design-start.md): it
         # is held by the drums' and idlers' friction, which that frictionless check omits.
         self._placed = scene.initial is None
         warn_scene(scene)
-        diagnostics.check_scene(self)
+        diagnostics.check_scene(self, scene_dict)
         self._busy = threading.Lock()
 
     @contextlib.contextmanager
@@ -760,11 +761,12 @@ class Simulation:
         pulley centres and takeup lines must stay the same."""
         if not isinstance(scene, Scene):
             raise _beltrs.SceneError(f"scene = {scene!r}: must be a beltrs.Scene")
-        self._core.set_scene(scene.to_dict())
+        scene_dict = scene.to_dict()
+        self._core.set_scene(scene_dict)
         self.scene = scene
         warn_scene(scene)
         diagnostics.check_drive_directions(self)  # e.g. set_drive with a starting curve
-        diagnostics.check_roll_wrap_speed(self)  # e.g. a faster starting curve
+        diagnostics.check_roll_wrap_speed(self, scene_dict)  # e.g. a faster starting curve
 
     def _pulley(self, pulley: Union[int, str]) -> int:
         """The index of ``pulley`` (an index in [0, P) or a name), else a SceneError. A
