@@ -587,10 +587,12 @@ def test_rigid_body_running_design_start_of_case_g_stays_within_3_percent():
     straight strands between the drums with no rolls, gravity or load keep 0.42-0.57 % rms
     at five of the six lengths, the same at half the speed (geometric, not inertial); (2)
     the rolls' segment contact on the polygon of the mass centres adds lines at v/l, 3 and
-    5 v/l (up to 1 kN). The loop's longitudinal modes answer whichever harmonic of v/l falls
-    near them (about 34 Hz on the bare loop at 2 m/s and 1 m/s; ten times the belt's damping
-    leaves that line), hence the scatter with the length, and the 0.1 s samples read the
-    lines crest or trough by the phase.
+    5 v/l (up to 1 kN; the node belt given the same segment contact instead of its roll
+    wrap reads up to 3.95 % rms, at 0.1244 m, where roll wrap gives it 0.28 %). The loop's
+    longitudinal modes answer whichever harmonic of v/l falls near them (about 34 Hz on the
+    bare loop at 2 m/s and 1 m/s; ten times the belt's damping leaves that line), hence the
+    scatter with the length, and the 0.1 s samples read the lines crest or trough by the
+    phase.
 
     Measured at 0.196 m bodies on main a7cf348 (session 12, after the drums took back the
     rigid contact's moment, docs/kubas.md): wrap joints 3.70 % at most (+3.70 % carry at
