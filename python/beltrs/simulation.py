@@ -353,9 +353,10 @@ class Simulation:
             dict with ``steps``, ``residual``, ``converged``, ``resets``,
             ``interrupted`` and ``holding_torque`` (N*m per pulley, counter-clockwise
             positive: what the holder of each held pulley takes at the end; 0 for a free
-            pulley and without friction; empty if interrupted inside a stage change). Ctrl-C stops the relaxation within about 0.1 s and returns its
-            report with ``interrupted`` True and ``converged`` False (the belt at rest
-            where the relaxation had brought it; call again to continue).
+            pulley and without friction; empty if interrupted inside a stage change).
+            Ctrl-C stops the relaxation within about 0.1 s and returns its report with
+            ``interrupted`` True and ``converged`` False (the belt at rest where the
+            relaxation had brought it; call again to continue).
 
         Raises:
             beltrs.BeltrsError: if the relaxation does not converge.
