@@ -337,7 +337,11 @@ class Simulation:
             method: ``"fire"`` (default, fast inertial relaxation) or ``"kinetic"``
                 (kinetic-energy damping of the thesis, applied per degree of freedom).
             friction: keep belt friction on while relaxing (locks in lower tensions around
-                the pulleys, thesis fig. 6.6). Default False (thesis §6.2).
+                the pulleys, thesis fig. 6.6). Default False (thesis §6.2). With friction the
+                pulleys with a drive or a brake are held at rest and a holdback stops its
+                pulley turning backwards, as on a stopped conveyor, so a loaded incline or
+                decline relaxes on its held drums (docs/engine.md, "Relaxing with
+                friction").
             tolerance: converged when the largest out-of-balance force is below this
                 fraction of the largest tension. Default 1e-7.
             max_steps: give up after this many relaxation steps.
@@ -347,10 +351,13 @@ class Simulation:
                 ``PROGRESS_AFTER`` (30 s) of wall time.
 
         Returns:
-            dict with ``steps``, ``residual``, ``converged``, ``resets`` and
-            ``interrupted``. Ctrl-C stops the relaxation within about 0.1 s and returns its
-            report with ``interrupted`` True and ``converged`` False (the belt at rest
-            where the relaxation had brought it; call again to continue).
+            dict with ``steps``, ``residual``, ``converged``, ``resets``,
+            ``interrupted`` and ``holding_torque`` (N*m per pulley, counter-clockwise
+            positive: what the holder of each held pulley takes at the end; 0 for a free
+            pulley and without friction; empty if interrupted inside a stage change).
+            Ctrl-C stops the relaxation within about 0.1 s and returns its report with
+            ``interrupted`` True and ``converged`` False (the belt at rest where the
+            relaxation had brought it; call again to continue).
 
         Raises:
             beltrs.BeltrsError: if the relaxation does not converge.

@@ -32,6 +32,10 @@ pub struct Effects {
     /// the equilibrium, and on the fictitious masses (which can be far lighter than the
     /// physical ones) an explicit damper would be unstable.
     pub damping: bool,
+    /// The static relaxation with friction: hold the pulleys that a stopped conveyor holds
+    /// at rest ([`crate::model::PulleyModel::rest_hold`], `crate::drives::hold::rest_holds`),
+    /// with `drives` off. Off in dynamics.
+    pub hold_at_rest: bool,
 }
 
 impl Effects {
@@ -51,6 +55,7 @@ impl Effects {
         drives: true,
         quasi_static_friction: false,
         damping: true,
+        hold_at_rest: false,
     };
 }
 
@@ -289,5 +294,8 @@ pub fn evaluate(cx: &mut StageContext<'_>, axial_done: bool, mut profile: Option
         if let (Some(t0), Some(profile)) = (started, profile.as_mut()) {
             profile[k] += t0.elapsed().as_secs_f64();
         }
+    }
+    if cx.effects.hold_at_rest {
+        crate::drives::hold::rest_holds(cx);
     }
 }

@@ -17,6 +17,7 @@ mod motor_start;
 mod open_belts;
 mod recorder;
 mod recording_params;
+mod relax_hold;
 mod rigid_body;
 mod rigid_wrap;
 mod rkf45;

@@ -121,6 +121,26 @@ impl PulleyModel {
             Some(h) => Some((h.combine(brake), Holder::Brake)),
         }
     }
+
+    /// How this pulley is held on a stopped conveyor: the static relaxation with friction
+    /// (`Effects::hold_at_rest`, `super::hold::rest_holds`) holds it so, since it looks for
+    /// the state of a conveyor standing still with its drives stopped and its brakes set
+    /// (`docs/engine.md`, "Relaxing with friction"). A pulley with a drive (of any kind) or
+    /// a brake stands still with whatever torque the belt asks for: a stopped drive is held
+    /// by its motor brake or gearbox, which the scene does not describe, and a brake's
+    /// `capacity`/`torque` is its torque in a dynamic stop (a table may be 0 before its
+    /// application); the relaxation reports the torque each takes
+    /// (`StabiliseReport::holding_torque`) to compare with what the holder can give. A
+    /// holdback alone stops it turning backwards, up to its capacity, and lets it turn
+    /// forwards. Any other pulley turns freely (`None`).
+    #[inline]
+    pub fn rest_hold(&self) -> Option<Prescribed> {
+        if self.drive.is_some() || self.brake.is_some() {
+            Some(Prescribed::at_rest(f64::INFINITY))
+        } else {
+            self.holdback.map(|h| h.combine(None))
+        }
+    }
 }
 
 /// The `brakes` stage: brakes (with the holdback of the same pulley, if any) hold their

@@ -6,8 +6,9 @@
 //! the result.
 
 use super::brake::Holder;
+use crate::friction::Prescribed;
 use crate::model::PulleyModel;
-use crate::pipeline::StageContext;
+use crate::pipeline::{Scratch, StageContext};
 
 /// Speed-controlled drives: the torque that makes each pulley follow its starting curve
 /// this step, within the motor's limit; it adds to the drive's load torque −b·ω.
@@ -38,19 +39,7 @@ pub(super) fn hold_pulleys(
         if holder != kind {
             continue;
         }
-        let (torque, holds) = match sc.friction[j].held_torque {
-            // Solved with the belt friction.
-            Some(t) => (t, sc.friction[j].holds),
-            // Torque that gives the prescribed speed this step, within the holder's range
-            // (a brake or a holdback never reverses the motion).
-            None => {
-                let other = sc.drive_torque[j]
-                    + sc.friction[j].torque
-                    + sc.bearing_torque[j]
-                    + sc.contact_torque[j];
-                hold.limit(p.inertia * hold.alpha(omega, dt) - other)
-            }
-        };
+        let (torque, holds) = holding(p, j, hold, omega, dt, sc);
         if brakes {
             sc.brake_torque[j] = torque;
         } else {
@@ -58,6 +47,53 @@ pub(super) fn hold_pulleys(
         }
         if holds {
             sc.held[j] = Some(hold.omega);
+        }
+    }
+}
+
+/// The static relaxation with friction (`Effects::hold_at_rest`; run after the stages,
+/// with the drives off): every pulley a stopped conveyor holds
+/// ([`PulleyModel::rest_hold`]: one with a drive or a brake, or a holdback against
+/// reverse rotation) is held at rest as a brake holds it, its torque in `brake_torque`.
+/// The belt friction was solved with the pulley held (`crate::friction::stage`), so
+/// friction on the held drums carries the belt's out-of-balance pull (bulk material on an
+/// incline or decline), as on a real conveyor standing on its brakes.
+pub fn rest_holds(cx: &mut StageContext<'_>) {
+    let (m, s, sc, dt) = (cx.model, &*cx.state, &mut *cx.scratch, cx.dt);
+    for (j, p) in m.pulleys.iter().enumerate() {
+        let Some(hold) = p.rest_hold() else {
+            continue;
+        };
+        let (torque, holds) = holding(p, j, hold, s.pulley_omega[j], dt, sc);
+        sc.brake_torque[j] = torque;
+        if holds {
+            sc.held[j] = Some(hold.omega);
+        }
+    }
+}
+
+/// The torque of the holder of pulley `j` (prescription `hold`, the pulley turning at
+/// `omega` rad/s, step `dt` s) and whether it holds the pulley this step: the friction
+/// solve's when it solved the hold with the belt friction, else the torque that gives
+/// the prescribed speed this step, within the holder's range (a brake or a holdback never
+/// reverses the motion).
+fn holding(
+    p: &PulleyModel,
+    j: usize,
+    hold: Prescribed,
+    omega: f64,
+    dt: f64,
+    sc: &Scratch,
+) -> (f64, bool) {
+    match sc.friction[j].held_torque {
+        // Solved with the belt friction.
+        Some(t) => (t, sc.friction[j].holds),
+        None => {
+            let other = sc.drive_torque[j]
+                + sc.friction[j].torque
+                + sc.bearing_torque[j]
+                + sc.contact_torque[j];
+            hold.limit(p.inertia * hold.alpha(omega, dt) - other)
         }
     }
 }

@@ -46,6 +46,7 @@ impl Simulation {
                 drives: false,
                 quasi_static_friction: false,
                 damping: true,
+                hold_at_rest: false,
             });
             let holding: Vec<f64> = (0..self.model.pulleys.len())
                 .map(|j| holding_torque(&self.model, &self.state, &self.scratch, j))

@@ -39,16 +39,26 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
         return;
     }
     let (friction_dt, drift, drives) = (cx.friction_dt(), cx.drift, cx.effects.drives);
+    let at_rest = cx.effects.hold_at_rest;
     let creep_step = cx.creep_step();
     let kick = cx.dt;
     let (m, s, sc) = (cx.model, &mut *cx.state, &mut *cx.scratch);
     for (j, p) in m.pulleys.iter().enumerate() {
-        let hold = if drives {
-            p.hold(s.time, drift, kick, s.pulley_omega[j], s.brake_ramp[j])
+        // (the prescription, whether it holds the pulley rigidly for the creep law)
+        let (prescribed, rigid) = if drives {
+            let hold = p.hold(s.time, drift, kick, s.pulley_omega[j], s.brake_ramp[j]);
+            (hold.map(|h| h.0), creep_held(p, hold.map(|h| h.1), s.time))
+        } else if at_rest {
+            // A stopped conveyor's holders (`crate::drives::hold::rest_holds`): rigid
+            // both ways for a drive or brake, one way (not rigid) for a holdback alone.
+            let hold = p.rest_hold();
+            (
+                hold,
+                hold.is_some_and(|h| h.min_torque < 0.0 && h.max_torque > 0.0),
+            )
         } else {
-            None
+            (None, false)
         };
-        let prescribed = hold.map(|h| h.0);
         let (static_coefficient, kinetic_coefficient) = match p.friction {
             FrictionModel::StickForce {
                 static_coefficient,
@@ -56,16 +66,7 @@ pub fn pulley_friction(cx: &mut StageContext<'_>) {
             } => (static_coefficient, kinetic_coefficient),
             FrictionModel::Creep(law) => {
                 if law.static_coefficient > 0.0 {
-                    creep_on_pulley(
-                        &law,
-                        j,
-                        creep_held(p, hold.map(|h| h.1), s.time),
-                        creep_step,
-                        m,
-                        s,
-                        sc,
-                        &cx.inertia.mass,
-                    );
+                    creep_on_pulley(&law, j, rigid, creep_step, m, s, sc, &cx.inertia.mass);
                 }
                 s.sliding[j].clear();
                 continue;

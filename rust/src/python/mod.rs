@@ -269,6 +269,10 @@ impl PySimulation {
         d.set_item("converged", report.converged)?;
         d.set_item("resets", report.resets)?;
         d.set_item("interrupted", report.interrupted)?;
+        d.set_item(
+            "holding_torque",
+            PyArray1::from_slice(py, &report.holding_torque),
+        )?;
         Ok(d)
     }
 
@@ -551,6 +555,7 @@ fn interrupted_report() -> crate::StabiliseReport {
         converged: false,
         resets: 0,
         interrupted: true,
+        holding_torque: Vec::new(),
     }
 }
 

@@ -30,6 +30,7 @@ impl Simulation {
             converged: false,
             resets: 0,
             interrupted: false,
+            holding_torque: Vec::new(),
         };
         for &scale in scales {
             self.scratch = Scratch::new(&self.model);
@@ -40,8 +41,9 @@ impl Simulation {
                 },
                 scale,
             )?;
+            let converged = r.converged;
             total.then(r);
-            if !r.converged {
+            if !converged {
                 break;
             }
         }

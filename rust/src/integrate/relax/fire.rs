@@ -58,6 +58,7 @@ impl Simulation {
             converged: false,
             resets,
             interrupted: false,
+            holding_torque: Vec::new(),
         })
     }
 

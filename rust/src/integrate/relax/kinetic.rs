@@ -35,6 +35,7 @@ impl Simulation {
             converged: false,
             resets,
             interrupted: false,
+            holding_torque: Vec::new(),
         })
     }
 

@@ -58,7 +58,7 @@ impl Default for StabiliseOptions {
 }
 
 /// What [`Simulation::stabilise`] did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct StabiliseReport {
     /// Relaxation steps taken.
     pub steps: u64,
@@ -71,6 +71,14 @@ pub struct StabiliseReport {
     /// Whether the caller's interrupt hook stopped it ([`crate::interrupt`]); the state is
     /// the last relaxation step's, at rest.
     pub interrupted: bool,
+    /// Torque on each pulley from its holder at the last evaluation, N·m
+    /// (counter-clockwise positive): with friction the relaxation holds a stopped
+    /// conveyor's drives, brakes and holdbacks at rest ([`PulleyModel::rest_hold`]) and this
+    /// is what each takes; 0 for a free pulley and without friction. Empty when not known
+    /// (interrupted inside a recompile).
+    ///
+    /// [`PulleyModel::rest_hold`]: crate::model::PulleyModel::rest_hold
+    pub holding_torque: Vec<f64>,
 }
 
 impl StabiliseReport {
@@ -82,6 +90,7 @@ impl StabiliseReport {
         self.residual = r.residual;
         self.converged = r.converged;
         self.interrupted = r.interrupted;
+        self.holding_torque = r.holding_torque;
     }
 }
 
@@ -147,7 +156,9 @@ impl Inertia {
 
 impl Simulation {
     /// Relax to static equilibrium (thesis §6.2). Drives and brakes are off; friction is
-    /// off unless `options.friction`. Both methods run on fictitious masses m̃ = K·Δt²
+    /// off unless `options.friction`, and with it the pulleys a stopped conveyor holds
+    /// (drives, brakes, holdbacks: [`crate::model::PulleyModel::rest_hold`]) are held at
+    /// rest. Both methods run on fictitious masses m̃ = K·Δt²
     /// (Underwood's dynamic relaxation), since time is not physical here; gravity still acts
     /// on the true masses. Simulated time does not advance. On return all velocities are zero.
     ///
@@ -200,9 +211,8 @@ impl Simulation {
     /// decline has m'_L·g·Δh/L per metre: the belt would run downhill for ever (a decline
     /// conveyor's carry strand, `docs/statics.md`). Refuse it up front: relative to the
     /// belt's weight, a pull above 1e-3 (a 40 m conveyor falling 6 m at 400 t/h: 0.08).
-    /// With friction on the drums turn freely (drives and brakes are off), so friction does
-    /// not hold it either; that case is not refused (it slows the run-away: residual 8e-4
-    /// after 10⁶ steps on that conveyor) and left open.
+    /// With friction the drive, brake and holdback pulleys are held at rest
+    /// (`Effects::hold_at_rest`) and friction on them holds it: not checked then.
     fn check_downhill_pull(&self) -> BeltResult<()> {
         let m = &self.model;
         let s = &self.state;
@@ -253,13 +263,19 @@ impl Simulation {
             drives: false,
             quasi_static_friction: true,
             damping: false,
+            // With friction, the drums of a stopped conveyor's drives and brakes stand
+            // still (`PulleyModel::rest_hold`): friction on them holds the belt.
+            hold_at_rest: options.friction,
         };
         self.state.zero_velocities();
         self.inertia = Inertia::fictitious(&self.model, &stable, contact_scale);
-        let result = match options.method {
+        let mut result = match options.method {
             Relaxation::KineticEnergy => self.relax_kinetic(effects, step, options),
             Relaxation::Fire => self.relax_fire(effects, step, options),
         };
+        if let Ok(r) = &mut result {
+            r.holding_torque.clone_from(&self.scratch.brake_torque);
+        }
         self.inertia = Inertia::physical(&self.model, &self.state.node_mass);
         self.state.zero_velocities();
         self.state.time = time;
@@ -287,6 +303,7 @@ impl Simulation {
                 converged: false,
                 resets,
                 interrupted: true,
+                holding_torque: Vec::new(),
             });
         }
         self.evaluate_scaled(effects, step.dt, step.contact_scale, false);
@@ -300,6 +317,7 @@ impl Simulation {
             converged: true,
             resets,
             interrupted: false,
+            holding_torque: Vec::new(),
         })
     }
 
