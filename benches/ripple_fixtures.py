@@ -89,8 +89,9 @@ def main(argv=None) -> int:
                          "rest) then the ramp; running: the builder's running design start (steady-running "
                          "tensions, belt at speed, no ramp), the --steady s at speed measured")
     ap.add_argument("--takeup", type=float, default=None,
-                    help="conveyor only: the takeup tension per strand, N (default: the builder's grip and sag rule, "
-                         "22 kN); e.g. 30000 grips the head drum through the whole 4 s start")
+                    help="conveyor only: the takeup tension per strand, N (default: the builder's rule, 31 kN for "
+                         "the 4 s start since session 13, 22 kN before session 11's grip rule); e.g. 30000 grips "
+                         "the head drum through the whole 4 s start")
     ap.add_argument("--save", help="write the measured record (time, tension, torque, ...) to this .npz")
     a = ap.parse_args(argv)
 

@@ -4,7 +4,7 @@
 belt tension, peak acceleration, takeup travel and drive power.
 
     python examples/startup_study.py            # 1 km, ST1250, 400 t/h at 2 m/s; 10 s and 30 s ramps,
-                                                # 3 s pre-start: 16 runs, about an hour on one core
+                                                # 3 s pre-start: 16 runs, about 2 h on one core
     python examples/startup_study.py --quick    # 40 m EP630/4 belt, ramps 1 s and 3 s, 0.3 s pre-start:
                                                 # the same study in seconds (a smoke test of the script)
     python examples/startup_study.py --control vfd  # the builder's default drive (PI speed loop with the
