@@ -1014,7 +1014,9 @@ class Conveyor:
 
     def initial(self, method: Optional[statics.Method] = None) -> Initial:
         """The design state of :meth:`scene` (:class:`beltrs.Initial`), as ``start`` says:
-        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`) or of
+        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`; plus the
+        belt's m'_G·v² with a gravity or winch takeup,
+        :func:`beltrs.design_start.running_tension`) or of
         the loop at standstill (``"rest"``: :func:`beltrs.design_start.at_rest`, DIN 22101
         with f = 0), laid on :meth:`design_path`: each strand's static sections on its run
         of the path, each drum's point on its wrap (a drive's T1 → T2 drop spread by the
@@ -1043,8 +1045,10 @@ class Conveyor:
             design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
         ]
         speed = -self.speed if self.start == "running" else 0.0
-        # The spans go in their sag (node belt and rigid bodies, docs/design-start.md).
-        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True)
+        # The spans go in their sag (node belt and rigid bodies, docs/design-start.md); running,
+        # the belt carries its m'_G·v² above the statics' tensions (gravity or winch takeup).
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True,
+                                    belt_mass=self.belt_mass, takeup=self.takeup.kind)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""
