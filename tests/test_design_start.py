@@ -188,6 +188,14 @@ def test_running_tension_by_takeup_kind():
     gravity = short(start="running", takeup=TakeupSpec("tail", tension=20e3))
     tf, tg = np.array(fixed.initial().tension), np.array(gravity.initial().tension)
     np.testing.assert_allclose(tg - tf, gravity.belt_mass * 2.0**2, rtol=1e-9)
+    # Conveyor.statics(running=True): the same term on the tables (default unchanged)
+    din, run = gravity.statics(), gravity.statics(running=True)
+    np.testing.assert_allclose(run.tension - din.tension, gravity.belt_mass * 2.0**2, rtol=1e-12)
+    assert run.drive("head").force == pytest.approx(din.drive("head").force, rel=1e-12)
+    assert run.drive("head").slack - din.drive("head").slack == pytest.approx(gravity.belt_mass * 4.0, rel=1e-12)
+    np.testing.assert_array_equal(fixed.statics(running=True).tension, fixed.statics().tension)
+    with pytest.raises(beltrs.SceneError, match=r"running = 'yes': must be True or False"):
+        gravity.statics(running="yes")
     with pytest.raises(beltrs.SceneError, match=r"takeup = 'screw': must be 'gravity', 'winch' or 'fixed'"):
         design_start.running_tension(20.0, 5.0, "screw")
     with pytest.raises(beltrs.SceneError, match=r"belt_mass = -1"):

@@ -699,12 +699,27 @@ class Conveyor:
         return items
 
     def statics(self, method: Optional[statics.Method] = None,
-                takeup_tension: Optional[float] = None) -> statics.TensionProfile:
+                takeup_tension: Optional[float] = None, running: bool = False) -> statics.TensionProfile:
         """Steady-running tensions at every point (:func:`beltrs.statics.tensions`) by
         ``method`` (default DIN 22101 with this conveyor's ``f``). Distances run from the
-        tail pulley along the carry strand, then back along the return strand."""
+        tail pulley along the carry strand, then back along the return strand.
+
+        ``running``: False (default) gives the standard's tensions, which leave out the
+        belt's m'_G·v²; True adds it (N) to every tension and to each drive's T1 and T2
+        (:func:`beltrs.design_start.running_tension`: with a gravity or winch takeup; a
+        fixed takeup adds nothing), the tensions the running belt carries and
+        ``start="running"`` places (docs/statics.md, "The belt's m'·v²")."""
         method = statics.DIN22101(self.f, self.gravity) if method is None else method
-        return statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+        profile = statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+        if running is not True and running is not False:
+            raise SceneError(f"running = {running!r}: must be True or False (add the belt's m'_G·v²)")
+        if not running:
+            return profile
+        from .design_start import running_tension
+
+        extra = running_tension(self.belt_mass, self.speed, self.takeup.kind)
+        return replace(profile, tension=profile.tension + extra,
+                       drives=[replace(d, tight=d.tight + extra, slack=d.slack + extra) for d in profile.drives])
 
     def liftoff_radii(self) -> list[tuple[int, str, float, float]]:
         """Concave vertical curves against lift-off at steady running: for each concave curve
