@@ -699,12 +699,27 @@ class Conveyor:
         return items
 
     def statics(self, method: Optional[statics.Method] = None,
-                takeup_tension: Optional[float] = None) -> statics.TensionProfile:
+                takeup_tension: Optional[float] = None, running: bool = False) -> statics.TensionProfile:
         """Steady-running tensions at every point (:func:`beltrs.statics.tensions`) by
         ``method`` (default DIN 22101 with this conveyor's ``f``). Distances run from the
-        tail pulley along the carry strand, then back along the return strand."""
+        tail pulley along the carry strand, then back along the return strand.
+
+        ``running``: False (default) gives the standard's tensions, which leave out the
+        belt's m'_G·v²; True adds it (N) to every tension and to each drive's T1 and T2
+        (:func:`beltrs.design_start.running_tension`: with a gravity or winch takeup; a
+        fixed takeup adds nothing), the tensions the running belt carries and
+        ``start="running"`` places (docs/statics.md, "The belt's m'·v²")."""
         method = statics.DIN22101(self.f, self.gravity) if method is None else method
-        return statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+        profile = statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
+        if running is not True and running is not False:
+            raise SceneError(f"running = {running!r}: must be True or False (add the belt's m'_G·v²)")
+        if not running:
+            return profile
+        from .design_start import running_tension
+
+        extra = running_tension(self.belt_mass, self.speed, self.takeup.kind)
+        return replace(profile, tension=profile.tension + extra,
+                       drives=[replace(d, tight=d.tight + extra, slack=d.slack + extra) for d in profile.drives])
 
     def liftoff_radii(self) -> list[tuple[int, str, float, float]]:
         """Concave vertical curves against lift-off at steady running: for each concave curve
@@ -1014,7 +1029,9 @@ class Conveyor:
 
     def initial(self, method: Optional[statics.Method] = None) -> Initial:
         """The design state of :meth:`scene` (:class:`beltrs.Initial`), as ``start`` says:
-        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`) or of
+        the tensions of :meth:`statics` (``"running"``; ``method`` as :meth:`scene`; plus the
+        belt's m'_G·v² with a gravity or winch takeup,
+        :func:`beltrs.design_start.running_tension`) or of
         the loop at standstill (``"rest"``: :func:`beltrs.design_start.at_rest`, DIN 22101
         with f = 0), laid on :meth:`design_path`: each strand's static sections on its run
         of the path, each drum's point on its wrap (a drive's T1 → T2 drop spread by the
@@ -1043,8 +1060,10 @@ class Conveyor:
             design_start.Run(tail, tail + lp, path_start=length, path_end=2 * wrap + back),
         ]
         speed = -self.speed if self.start == "running" else 0.0
-        # The spans go in their sag (node belt and rigid bodies, docs/design-start.md).
-        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True)
+        # The spans go in their sag (node belt and rigid bodies, docs/design-start.md); running,
+        # the belt carries its m'_G·v² above the statics' tensions (gravity or winch takeup).
+        return design_start.initial(profile, pieces, length, speed=speed, path=corners, sag=True,
+                                    belt_mass=self.belt_mass, takeup=self.takeup.kind)
 
     def _takeup(self, t_up: float, direction: tuple[float, float]) -> Takeup:
         """The takeup pulling with 2 x ``t_up`` (N) along ``direction``."""

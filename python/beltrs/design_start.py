@@ -35,7 +35,8 @@ from . import statics
 from ._beltrs import SceneError
 from .scene import Initial
 
-__all__ = ["START_KINDS", "Run", "Wrap", "at_rest", "initial", "path_length", "tension_table"]
+__all__ = ["FORCE_TAKEUPS", "START_KINDS", "Run", "Wrap", "at_rest", "initial", "path_length", "running_tension",
+           "tension_table"]
 
 #: The design states a builder can start from: ``"rest"`` (standstill tensions: the
 #: takeup and the lifts, no running resistance, belt at rest) and ``"running"`` (the
@@ -165,9 +166,47 @@ def tension_table(profile: statics.TensionProfile, pieces: Sequence[Union[Run, W
     return [float(x) for x in s], [float(x) for x in t]
 
 
+#: Takeup kinds that set the loop's tension by a force (:class:`beltrs.Takeup` ``kind``):
+#: running, their carriage balances 2·(T − m'_G·v²), so the belt's tension is the static
+#: one plus m'_G·v² (:func:`running_tension`). A ``"fixed"`` (screw) takeup fixes the belt's
+#: length instead: its tension stays the static one.
+FORCE_TAKEUPS = ("gravity", "winch")
+
+
+def running_tension(belt_mass: float, speed: float, takeup: str = "gravity") -> float:
+    """What a belt running at ``speed`` carries above its static (DIN 22101 / CEMA) tension
+    at every point of the loop, N: m'_G·v² with a takeup that sets the tension by a force
+    (``"gravity"``, ``"winch"``), 0 with a ``"fixed"`` one (docs/design-start.md, "Running at
+    speed: the belt's m'·v²").
+
+    The belt wrapping a drum at speed v presses on it with (T − m'_G·v²)/R, not T/R (the
+    centripetal force of its own mass); so a takeup's carriage, pulled by the force F,
+    balances 2·(T − m'_G·v²) = F, and the tension everywhere is the static one (where
+    v = 0 gives 2·T = F) plus m'_G·v². A screw takeup fixes the belt's length and so its
+    stretch: the tensions stay, the drums' contact unloads by m'_G·v²/R.
+
+    Args:
+        belt_mass: the belt's own mass per length m'_G, kg/m (without the material: the
+            material leaves the belt at the discharge and never wraps the takeup drum).
+        speed: belt speed, m/s (either sign).
+        takeup: the takeup's kind, ``"gravity"`` (default), ``"winch"`` or ``"fixed"``.
+    """
+    m = statics.check("belt_mass", belt_mass, low=0.0, unit="kg/m")
+    v = statics.check("speed", speed, low=-math.inf, unit="m/s")
+    if takeup not in ("gravity", "winch", "fixed"):
+        raise SceneError(f"takeup = {takeup!r}: must be 'gravity', 'winch' or 'fixed' (the takeup's kind)")
+    return m * v * v if takeup in FORCE_TAKEUPS else 0.0
+
+
 def initial(profile: statics.TensionProfile, pieces: Sequence[Union[Run, Wrap]], path_length: float, *,
-            speed: float = 0.0, path: Sequence[Sequence[float]] = (), sag: bool = False) -> Initial:
+            speed: float = 0.0, path: Sequence[Sequence[float]] = (), sag: bool = False,
+            belt_mass: float = 0.0, takeup: str = "gravity") -> Initial:
     """The :class:`beltrs.Initial` design state from static tensions.
+
+    Running (``speed`` ≠ 0) with a takeup that sets the tension by a force, every tension of
+    the table is raised by the belt's m'_G·v² (:func:`running_tension`): the static
+    calculation leaves it out, the running belt carries it, and without it the takeup
+    would move and the loop ring from t = 0.
 
     Args:
         profile, pieces, path_length: as :func:`tension_table`.
@@ -177,10 +216,16 @@ def initial(profile: statics.TensionProfile, pieces: Sequence[Union[Run, Wrap]],
             (:class:`beltrs.Initial`). Default (): the pulleys' tangent path.
         sag: place the spans resting on idler rolls in their static sag
             (:attr:`beltrs.Initial.sag`). Default False (the builders pass True).
+        belt_mass: the belt's own mass per length m'_G, kg/m (``Belt.mass_per_length``,
+            without the material), for the m'_G·v² term. Default 0 (no term; the builders
+            pass the belt's).
+        takeup: the kind of the takeup that sets the loop's tension, ``"gravity"``
+            (default), ``"winch"`` (both add m'_G·v²) or ``"fixed"`` (adds nothing).
     """
     statics.check("speed", speed, low=-math.inf, unit="m/s")
+    extra = running_tension(belt_mass, speed, takeup)
     distance, tension = tension_table(profile, pieces, path_length)
-    return Initial(tension=tuple(tension), distance=tuple(distance), speed=float(speed),
+    return Initial(tension=tuple(t + extra for t in tension), distance=tuple(distance), speed=float(speed),
                    path=tuple(tuple(float(v) for v in c) for c in path), sag=sag)
 
 

@@ -547,7 +547,8 @@ def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: 
                       sag: bool) -> Any:
     """Case G's design state on its pulleys' path (node 0 at the tail's top, node order
     against travel: tail wrap, return strand, head wrap, carry strand); ``sag``: the spans
-    placed in their static sag."""
+    placed in their static sag; running, the tensions carry the belt's m'_G·v² (its
+    gravity takeup, :func:`beltrs.design_start.running_tension`)."""
     from . import design_start, statics
 
     r = GUO_WANG["drum_radius"]
@@ -568,7 +569,7 @@ def _guo_wang_initial(length: float, material: float, f: float, takeup_tension: 
         design_start.Run(0.0, span, path_start=total - r, path_end=total - length + r),
     ]
     return design_start.initial(profile, pieces, total, speed=-GUO_WANG["speed"] if start == "running" else 0.0,
-                                sag=sag)
+                                sag=sag, belt_mass=GUO_WANG["belt_mass"], takeup="gravity")
 
 
 @dataclass(frozen=True)
