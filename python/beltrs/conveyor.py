@@ -38,7 +38,7 @@ import numpy as np
 from . import statics
 from ._beltrs import SceneError
 from .layout import Profile, idlers_along
-from .design_start import START_KINDS
+from .design_start import START_KINDS, TAKEUP_KINDS
 from .scene import (Belt, Brake, Drive, Friction, Holdback, Initial, Load, Motor, Pulley, Recording, Scene, Solver,
                     SpeedController, StartCurve, Takeup, TorqueFollow)
 from .statics import check
@@ -323,9 +323,6 @@ class DriveSpec:
             if self.start_curve is not None or self.controller is not None or self.control != "vfd":
                 raise SceneError(f"{where}.follow = {self.follow!r}: a follower takes its torque from its master; "
                                  "leave start_curve, control and controller out")
-
-
-TAKEUP_KINDS = ("gravity", "winch", "fixed")
 
 
 @dataclass
@@ -709,10 +706,9 @@ class Conveyor:
         (:func:`beltrs.design_start.running_tension`: with a gravity or winch takeup; a
         fixed takeup adds nothing), the tensions the running belt carries and
         ``start="running"`` places (docs/statics.md, "The belt's m'·v²")."""
+        running = statics.check_flag("running", running)
         method = statics.DIN22101(self.f, self.gravity) if method is None else method
         profile = statics.tensions(self.loop(takeup_tension), self.belt_mass, method)
-        if running is not True and running is not False:
-            raise SceneError(f"running = {running!r}: must be True or False (add the belt's m'_G·v²)")
         if not running:
             return profile
         from .design_start import running_tension
@@ -785,8 +781,7 @@ class Conveyor:
 
         rounded up to the next kN.
         """
-        if not isinstance(start_dynamics, (bool, np.bool_)):
-            raise SceneError(f"start_dynamics = {start_dynamics!r}: must be True or False")
+        start_dynamics = statics.check_flag("start_dynamics", start_dynamics)
         if self.takeup.tension is not None:
             return float(self.takeup.tension)
         base = 10e3  # any level: tensions are linear in it

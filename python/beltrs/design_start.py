@@ -35,8 +35,8 @@ from . import statics
 from ._beltrs import SceneError
 from .scene import Initial
 
-__all__ = ["FORCE_TAKEUPS", "START_KINDS", "Run", "Wrap", "at_rest", "initial", "path_length", "running_tension",
-           "tension_table"]
+__all__ = ["FORCE_TAKEUPS", "START_KINDS", "TAKEUP_KINDS", "Run", "Wrap", "at_rest", "initial", "path_length",
+           "running_tension", "tension_table"]
 
 #: The design states a builder can start from: ``"rest"`` (standstill tensions: the
 #: takeup and the lifts, no running resistance, belt at rest) and ``"running"`` (the
@@ -166,6 +166,10 @@ def tension_table(profile: statics.TensionProfile, pieces: Sequence[Union[Run, W
     return [float(x) for x in s], [float(x) for x in t]
 
 
+#: The takeup kinds (:class:`beltrs.conveyor.Takeup` ``kind``): a counterweight, a winch, a
+#: screw.
+TAKEUP_KINDS = ("gravity", "winch", "fixed")
+
 #: Takeup kinds that set the loop's tension by a force (:class:`beltrs.Takeup` ``kind``):
 #: running, their carriage balances 2·(T − m'_G·v²), so the belt's tension is the static
 #: one plus m'_G·v² (:func:`running_tension`). A ``"fixed"`` (screw) takeup fixes the belt's
@@ -193,8 +197,9 @@ def running_tension(belt_mass: float, speed: float, takeup: str = "gravity") -> 
     """
     m = statics.check("belt_mass", belt_mass, low=0.0, unit="kg/m")
     v = statics.check("speed", speed, low=-math.inf, unit="m/s")
-    if takeup not in ("gravity", "winch", "fixed"):
-        raise SceneError(f"takeup = {takeup!r}: must be 'gravity', 'winch' or 'fixed' (the takeup's kind)")
+    if takeup not in TAKEUP_KINDS:
+        kinds = ", ".join(map(repr, TAKEUP_KINDS[:-1])) + f" or {TAKEUP_KINDS[-1]!r}"
+        raise SceneError(f"takeup = {takeup!r}: must be {kinds} (the takeup's kind)")
     return m * v * v if takeup in FORCE_TAKEUPS else 0.0
 
 

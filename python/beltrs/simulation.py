@@ -22,6 +22,7 @@ from ._progress import make_bar
 from .model import Model
 from .result import Result
 from .scene import Brake, Drive, Friction, Holdback, Scene
+from .statics import check_flag
 
 __all__ = ["DEFAULT_MAX_MEMORY", "DEFAULT_MAX_WALL_TIME", "MAX_RECORD_INTERVAL", "CheckpointWarning", "Simulation"]
 
@@ -69,13 +70,9 @@ def _real(name: str, value: Any, rule: str, ok: Any = lambda v: True) -> float:
 
 
 def _flag(name: str, value: Any, none: bool = False) -> Any:
-    """``value`` as a bool (or None if ``none``), else a SceneError naming the argument."""
-    if value is None and none:
-        return None
-    if not isinstance(value, (bool, np.bool_)):
-        rule = "True, False or None" if none else "True or False"
-        raise _beltrs.SceneError(f"{name} = {value!r}: must be {rule}")
-    return bool(value)
+    """``value`` as a bool (or None if ``none``), else a SceneError naming the argument
+    (:func:`beltrs.statics.check_flag`)."""
+    return check_flag(name, value, none=none)
 
 
 def _path(name: str, value: Any) -> str:

@@ -68,6 +68,16 @@ def _error(name: str, value: Any, rule: str) -> SceneError:
     return SceneError(f"{name} = {value!r}: {rule}")
 
 
+def check_flag(name: str, value: Any, *, none: bool = False) -> Optional[bool]:
+    """``value`` as a bool (a Python or NumPy bool; or None if ``none``), or a SceneError
+    naming ``name``, the value and the rule."""
+    if value is None and none:
+        return None
+    if not isinstance(value, (bool, np.bool_)):
+        raise _error(name, value, "must be True, False or None" if none else "must be True or False")
+    return bool(value)
+
+
 def _number(name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise _error(name, value, "expected a number")
